@@ -1,0 +1,115 @@
+// The validated model as the generator sees it. Everything is in SI units and
+// world axes at t = 0, exactly as written in the model file; frames in body
+// axes are derived later by the analysis.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace mbrt::codegen {
+
+// Where a value came from, for error messages: "file:line:column".
+struct SourceLocation {
+  std::string file;
+  int line = 0;    // 1-based, 0 when unknown
+  int column = 0;  // 1-based, 0 when unknown
+};
+
+// A model file that cannot be used. what() reads
+// "<file>:<line>:<column>: <key>: <what was expected>".
+class ModelError : public std::runtime_error {
+ public:
+  ModelError(const SourceLocation& where, const std::string& key, const std::string& message);
+  const SourceLocation& where() const noexcept { return where_; }
+  const std::string& key() const noexcept { return key_; }
+
+ private:
+  SourceLocation where_;
+  std::string key_;
+};
+
+constexpr int kGround = -1;  // body index of the fixed world body "ground"
+
+struct Body {
+  std::string name;
+  SourceLocation where;
+  double mass = 0.0;
+  bool particle = false;
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the COM, body axes (zero for particles)
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector4d orientation{1.0, 0.0, 0.0, 0.0};    // e0..e3, body to world
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // body axes
+};
+
+enum class JointType { spherical, revolute, universal, cylindrical, prismatic, fixed, distance };
+
+struct Joint {
+  std::string name;
+  SourceLocation where;
+  JointType type = JointType::spherical;
+  int body1 = kGround;
+  int body2 = kGround;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // world, t = 0 (all but distance)
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // unit, world (revolute, cylindrical, prismatic)
+  Eigen::Vector3d axis1 = Eigen::Vector3d::UnitX();  // unit, world (universal, fixed in body 1)
+  Eigen::Vector3d axis2 = Eigen::Vector3d::UnitY();  // unit, world (universal, fixed in body 2)
+  Eigen::Vector3d point1 = Eigen::Vector3d::Zero();  // world (distance)
+  Eigen::Vector3d point2 = Eigen::Vector3d::Zero();  // world (distance)
+  double length = 0.0;                               // distance: given, or |point2 - point1|
+};
+
+enum class ForceType { spring_damper, torque, force };
+
+struct Force {
+  ForceType type = ForceType::force;
+  SourceLocation where;
+  int body1 = kGround;  // spring_damper, torque
+  int body2 = kGround;  // spring_damper, torque
+  int body = kGround;   // force
+  Eigen::Vector3d point1 = Eigen::Vector3d::Zero();  // spring_damper, world at t = 0
+  Eigen::Vector3d point2 = Eigen::Vector3d::Zero();
+  double stiffness = 0.0;
+  double damping = 0.0;
+  double rest_length = 0.0;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // torque: unit, world at t = 0, fixed in body 1
+  double value = 0.0;                                // torque
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // force: world at t = 0, fixed in body
+  Eigen::Vector3d vector = Eigen::Vector3d::Zero();  // force: world, constant
+};
+
+struct SolverSettings {
+  std::string scheme = "staggered-pcst";
+  double step = 1.0e-3;
+  int euler_updates = 2;
+  // staggered-pcst: regularization of S relative to its largest diagonal
+  // entry at t = 0, and the decay rate of position violations (1/s; 0 picks
+  // the default from the step, see docs/staggered-pcst.md).
+  double penalty = 1.0e-9;
+  double stabilization = 0.0;
+};
+
+struct Model {
+  std::string name;
+  std::string file;  // path as given, for messages
+  std::optional<Eigen::Vector3d> gravity;
+  std::vector<Body> bodies;  // "ground" is not listed; it is kGround
+  std::vector<Joint> joints;
+  std::vector<Force> forces;
+  SolverSettings solver;
+
+  const std::string& body_name(int index) const;  // "ground" for kGround
+};
+
+// Reads and validates a model file. Throws ModelError naming the file, line,
+// key and what was expected.
+Model load_model(const std::string& path);
+
+// Same from text (the file name is used for messages only).
+Model parse_model(const std::string& yaml_text, const std::string& file_name);
+
+}  // namespace mbrt::codegen

@@ -1,0 +1,98 @@
+// Constraint kernels: value, Jacobian with respect to u = [v; w_body] of each
+// body, and the quadratic velocity term, so that
+//   phi_dot  = J1 u1 + J2 u2
+//   phi_ddot = J1 u1' + J2 u2' + quad.
+// Every joint is built from three primitives: a point fixed in a body, a unit
+// vector fixed in a body, and scalar products of their differences.
+#pragma once
+
+#include "mbrt/body_state.hpp"
+
+namespace mbrt {
+
+template <int N>
+struct ConstraintRows {
+  Eigen::Matrix<double, N, 1> phi;
+  Eigen::Matrix<double, N, 6> J1;
+  Eigen::Matrix<double, N, 6> J2;
+  Eigen::Matrix<double, N, 1> quad;
+};
+
+// A world vector carried by a body (a point or a direction) with its first
+// derivative, its Jacobian with respect to that body's u, and its second
+// derivative at zero acceleration.
+struct CarriedVector {
+  Vec3 x;
+  Vec3 x_dot;
+  Mat36 J;
+  Vec3 quad;
+};
+
+// Point with body-frame offset s from the COM: x = r + R s,
+// x_dot = v + R (w x s), x_ddot = a + R (w' x s) + R (w x (w x s)).
+inline CarriedVector carried_point(const BodyPose& pose, const BodyVelocity& vel, const Vec3& s) noexcept {
+  CarriedVector c;
+  const Vec3 w_x_s = vel.w.cross(s);
+  c.x = pose.r + pose.R * s;
+  c.x_dot = vel.v + pose.R * w_x_s;
+  c.J.leftCols<3>().setIdentity();
+  c.J.rightCols<3>() = -pose.R * skew(s);
+  c.quad = pose.R * vel.w.cross(w_x_s);
+  return c;
+}
+
+// Direction with body-frame components d: x = R d.
+inline CarriedVector carried_direction(const BodyPose& pose, const BodyVelocity& vel, const Vec3& d) noexcept {
+  CarriedVector c;
+  const Vec3 w_x_d = vel.w.cross(d);
+  c.x = pose.R * d;
+  c.x_dot = pose.R * w_x_d;
+  c.J.leftCols<3>().setZero();
+  c.J.rightCols<3>() = -pose.R * skew(d);
+  c.quad = pose.R * vel.w.cross(w_x_d);
+  return c;
+}
+
+// Difference b - a of two carried vectors, each keeping its own body's Jacobian.
+struct CarriedDifference {
+  Vec3 x;
+  Vec3 x_dot;
+  Mat36 J1;  // of -a, body 1
+  Mat36 J2;  // of b, body 2
+  Vec3 quad;
+};
+
+inline CarriedDifference difference(const CarriedVector& a, const CarriedVector& b) noexcept {
+  return {b.x - a.x, b.x_dot - a.x_dot, -a.J, b.J, b.quad - a.quad};
+}
+
+// Row: a . b, a carried by body 1, b by body 2 (perpendicularity of two axes).
+inline void dot_row(const CarriedVector& a, const CarriedVector& b, double& phi,
+                    Eigen::Ref<Eigen::Matrix<double, 1, 6>> J1, Eigen::Ref<Eigen::Matrix<double, 1, 6>> J2,
+                    double& quad) noexcept {
+  phi = a.x.dot(b.x);
+  J1 = b.x.transpose() * a.J;
+  J2 = a.x.transpose() * b.J;
+  quad = a.quad.dot(b.x) + 2.0 * a.x_dot.dot(b.x_dot) + a.x.dot(b.quad);
+}
+
+// Row: n . d, n carried by body 1, d = x2 - x1 (point 2 stays in a plane of body 1).
+inline void normal_dot_difference_row(const CarriedVector& n, const CarriedDifference& d, double& phi,
+                                      Eigen::Ref<Eigen::Matrix<double, 1, 6>> J1,
+                                      Eigen::Ref<Eigen::Matrix<double, 1, 6>> J2, double& quad) noexcept {
+  phi = n.x.dot(d.x);
+  J1 = d.x.transpose() * n.J + n.x.transpose() * d.J1;
+  J2 = n.x.transpose() * d.J2;
+  quad = n.quad.dot(d.x) + 2.0 * n.x_dot.dot(d.x_dot) + n.x.dot(d.quad);
+}
+
+// Rows 0..2: x2 - x1 = 0 (coincident points).
+template <int N>
+inline void coincidence_rows(const CarriedDifference& d, ConstraintRows<N>& rows) noexcept {
+  rows.phi.template head<3>() = d.x;
+  rows.J1.template topRows<3>() = d.J1;
+  rows.J2.template topRows<3>() = d.J2;
+  rows.quad.template head<3>() = d.quad;
+}
+
+}  // namespace mbrt

@@ -1,0 +1,120 @@
+// Holonomic joints as compositions of the kernels in constraint_kernels.hpp.
+// Frames are constant body-frame data computed by the generator from the
+// model's world description at t = 0.
+#pragma once
+
+#include "mbrt/constraint_kernels.hpp"
+
+namespace mbrt {
+
+// Body-frame joint data. Triad (a, b, c) is orthonormal with a along the
+// joint axis; a1, b1, c1 are its components in body 1, a2, b2, c2 the same
+// world triad in body 2 at t = 0 (for universal joints a2 is the second axis).
+struct JointFrame {
+  Vec3 s1, s2;       // joint point on each body, from the COM
+  Vec3 a1, b1, c1;
+  Vec3 a2, b2, c2;
+  double length;     // distance joints only
+};
+
+struct BodyMotion {
+  const BodyPose& pose;
+  const BodyVelocity& vel;
+};
+
+namespace detail {
+inline CarriedDifference joint_points(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  return difference(carried_point(m1.pose, m1.vel, f.s1), carried_point(m2.pose, m2.vel, f.s2));
+}
+
+template <int N>
+inline void add_dot_row(ConstraintRows<N>& rows, int i, const CarriedVector& a, const CarriedVector& b) noexcept {
+  dot_row(a, b, rows.phi[i], rows.J1.row(i), rows.J2.row(i), rows.quad[i]);
+}
+
+template <int N>
+inline void add_plane_row(ConstraintRows<N>& rows, int i, const CarriedVector& n, const CarriedDifference& d) noexcept {
+  normal_dot_difference_row(n, d, rows.phi[i], rows.J1.row(i), rows.J2.row(i), rows.quad[i]);
+}
+}  // namespace detail
+
+// Spherical: the joint points coincide (3 rows).
+inline ConstraintRows<3> spherical(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  ConstraintRows<3> rows;
+  coincidence_rows(detail::joint_points(f, m1, m2), rows);
+  return rows;
+}
+
+// Revolute: spherical plus the axis of body 1 perpendicular to b and c of body 2 (5 rows).
+inline ConstraintRows<5> revolute(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  ConstraintRows<5> rows;
+  coincidence_rows(detail::joint_points(f, m1, m2), rows);
+  const CarriedVector a1 = carried_direction(m1.pose, m1.vel, f.a1);
+  detail::add_dot_row(rows, 3, a1, carried_direction(m2.pose, m2.vel, f.b2));
+  detail::add_dot_row(rows, 4, a1, carried_direction(m2.pose, m2.vel, f.c2));
+  return rows;
+}
+
+// Universal: spherical plus axis 1 (in body 1) perpendicular to axis 2 (in body 2) (4 rows).
+inline ConstraintRows<4> universal(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  ConstraintRows<4> rows;
+  coincidence_rows(detail::joint_points(f, m1, m2), rows);
+  detail::add_dot_row(rows, 3, carried_direction(m1.pose, m1.vel, f.a1), carried_direction(m2.pose, m2.vel, f.a2));
+  return rows;
+}
+
+namespace detail {
+// Axes parallel and the point of body 2 on the axis line of body 1 (4 rows).
+template <int N>
+inline void cylindrical_rows(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2,
+                             ConstraintRows<N>& rows) noexcept {
+  const CarriedDifference d = joint_points(f, m1, m2);
+  const CarriedVector a1 = carried_direction(m1.pose, m1.vel, f.a1);
+  add_dot_row(rows, 0, a1, carried_direction(m2.pose, m2.vel, f.b2));
+  add_dot_row(rows, 1, a1, carried_direction(m2.pose, m2.vel, f.c2));
+  add_plane_row(rows, 2, carried_direction(m1.pose, m1.vel, f.b1), d);
+  add_plane_row(rows, 3, carried_direction(m1.pose, m1.vel, f.c1), d);
+}
+}  // namespace detail
+
+// Cylindrical: slides along and turns about the axis (4 rows).
+inline ConstraintRows<4> cylindrical(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  ConstraintRows<4> rows;
+  detail::cylindrical_rows(f, m1, m2, rows);
+  return rows;
+}
+
+// Prismatic: cylindrical plus no rotation about the axis, b1 . c2 = 0 (5 rows).
+inline ConstraintRows<5> prismatic(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  ConstraintRows<5> rows;
+  detail::cylindrical_rows(f, m1, m2, rows);
+  detail::add_dot_row(rows, 4, carried_direction(m1.pose, m1.vel, f.b1), carried_direction(m2.pose, m2.vel, f.c2));
+  return rows;
+}
+
+// Fixed: spherical plus the two triads kept aligned (6 rows).
+inline ConstraintRows<6> fixed(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  ConstraintRows<6> rows;
+  coincidence_rows(detail::joint_points(f, m1, m2), rows);
+  const CarriedVector a1 = carried_direction(m1.pose, m1.vel, f.a1);
+  const CarriedVector c2 = carried_direction(m2.pose, m2.vel, f.c2);
+  detail::add_dot_row(rows, 3, a1, carried_direction(m2.pose, m2.vel, f.b2));
+  detail::add_dot_row(rows, 4, a1, c2);
+  detail::add_dot_row(rows, 5, carried_direction(m1.pose, m1.vel, f.b1), c2);
+  return rows;
+}
+
+// Distance: (|x2 - x1|^2 - L^2) / (2 L) = 0, which has units of length and
+// equals |x2 - x1| - L to first order (1 row).
+inline ConstraintRows<1> distance(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  ConstraintRows<1> rows;
+  const CarriedDifference d = detail::joint_points(f, m1, m2);
+  const double inv_l = 1.0 / f.length;
+  rows.phi[0] = 0.5 * inv_l * (d.x.squaredNorm() - f.length * f.length);
+  rows.J1.row(0) = inv_l * d.x.transpose() * d.J1;
+  rows.J2.row(0) = inv_l * d.x.transpose() * d.J2;
+  rows.quad[0] = inv_l * (d.x_dot.squaredNorm() + d.x.dot(d.quad));
+  return rows;
+}
+
+}  // namespace mbrt
