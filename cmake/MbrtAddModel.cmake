@@ -1,0 +1,55 @@
+# mbrt_add_model(<target> MODEL <model.yaml>
+#                [NAME <name>] [SCHEME <scheme>] [STEP <h>] [EULER_UPDATES <k>] [PROJECT_INITIAL])
+#
+# Generates the model's step with `mbrt gen` at build time (again whenever the
+# model file or the generator changes) and adds it as a static library
+# <target>. Include "<name>.hpp" (name from the model file, or NAME to build
+# several variants of one model into one program) and call
+# mbrt::models::<name>::step().
+function(mbrt_add_model target)
+  cmake_parse_arguments(ARG "PROJECT_INITIAL" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "" ${ARGN})
+  if(NOT ARG_MODEL)
+    message(FATAL_ERROR "mbrt_add_model(${target}): MODEL <file.yaml> is required")
+  endif()
+  get_filename_component(model "${ARG_MODEL}" ABSOLUTE)
+  if(NOT EXISTS "${model}")
+    message(FATAL_ERROR "mbrt_add_model(${target}): model file ${model} does not exist")
+  endif()
+  # The file names follow the model's name: read it at configure time.
+  file(STRINGS "${model}" name_line REGEX "^name:[ \t]*[a-z][a-z0-9_]*")
+  string(REGEX REPLACE "^name:[ \t]*([a-z][a-z0-9_]*).*" "\\1" name "${name_line}")
+  if(NOT name)
+    message(FATAL_ERROR "mbrt_add_model(${target}): ${model} has no top-level 'name:'")
+  endif()
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${model}")
+
+  set(options "")
+  if(ARG_NAME)
+    set(name ${ARG_NAME})
+    list(APPEND options --name ${ARG_NAME})
+  endif()
+  if(ARG_SCHEME)
+    list(APPEND options --scheme ${ARG_SCHEME})
+  endif()
+  if(ARG_STEP)
+    list(APPEND options --h ${ARG_STEP})
+  endif()
+  if(ARG_EULER_UPDATES)
+    list(APPEND options --euler-updates ${ARG_EULER_UPDATES})
+  endif()
+  if(ARG_PROJECT_INITIAL)
+    list(APPEND options --project-initial)
+  endif()
+
+  set(dir "${CMAKE_CURRENT_BINARY_DIR}/mbrt_models/${target}")
+  add_custom_command(
+    OUTPUT "${dir}/${name}.hpp" "${dir}/${name}.cpp"
+    COMMAND mbrt::mbrt_cli gen "${model}" -o "${dir}" ${options}
+    DEPENDS "${model}" mbrt::mbrt_cli
+    COMMENT "mbrt: generating ${name} from ${ARG_MODEL}"
+    VERBATIM)
+  add_library(${target} STATIC "${dir}/${name}.cpp" "${dir}/${name}.hpp")
+  target_include_directories(${target} PUBLIC "${dir}")
+  target_link_libraries(${target} PUBLIC mbrt::mbrt)
+  target_compile_features(${target} PUBLIC cxx_std_17)
+endfunction()

@@ -66,24 +66,32 @@ inline CarriedDifference difference(const CarriedVector& a, const CarriedVector&
   return {b.x - a.x, b.x_dot - a.x_dot, -a.J, b.J, b.quad - a.quad};
 }
 
+// One scalar constraint row.
+struct ScalarRow {
+  double phi;
+  Eigen::Matrix<double, 1, 6> J1;
+  Eigen::Matrix<double, 1, 6> J2;
+  double quad;
+};
+
 // Row: a . b, a carried by body 1, b by body 2 (perpendicularity of two axes).
-inline void dot_row(const CarriedVector& a, const CarriedVector& b, double& phi,
-                    Eigen::Ref<Eigen::Matrix<double, 1, 6>> J1, Eigen::Ref<Eigen::Matrix<double, 1, 6>> J2,
-                    double& quad) noexcept {
-  phi = a.x.dot(b.x);
-  J1 = b.x.transpose() * a.J;
-  J2 = a.x.transpose() * b.J;
-  quad = a.quad.dot(b.x) + 2.0 * a.x_dot.dot(b.x_dot) + a.x.dot(b.quad);
+inline ScalarRow dot_row(const CarriedVector& a, const CarriedVector& b) noexcept {
+  return {a.x.dot(b.x), b.x.transpose() * a.J, a.x.transpose() * b.J,
+          a.quad.dot(b.x) + 2.0 * a.x_dot.dot(b.x_dot) + a.x.dot(b.quad)};
 }
 
 // Row: n . d, n carried by body 1, d = x2 - x1 (point 2 stays in a plane of body 1).
-inline void normal_dot_difference_row(const CarriedVector& n, const CarriedDifference& d, double& phi,
-                                      Eigen::Ref<Eigen::Matrix<double, 1, 6>> J1,
-                                      Eigen::Ref<Eigen::Matrix<double, 1, 6>> J2, double& quad) noexcept {
-  phi = n.x.dot(d.x);
-  J1 = d.x.transpose() * n.J + n.x.transpose() * d.J1;
-  J2 = n.x.transpose() * d.J2;
-  quad = n.quad.dot(d.x) + 2.0 * n.x_dot.dot(d.x_dot) + n.x.dot(d.quad);
+inline ScalarRow normal_dot_difference_row(const CarriedVector& n, const CarriedDifference& d) noexcept {
+  return {n.x.dot(d.x), d.x.transpose() * n.J + n.x.transpose() * d.J1, n.x.transpose() * d.J2,
+          n.quad.dot(d.x) + 2.0 * n.x_dot.dot(d.x_dot) + n.x.dot(d.quad)};
+}
+
+template <int N>
+inline void set_row(ConstraintRows<N>& rows, int i, const ScalarRow& r) noexcept {
+  rows.phi[i] = r.phi;
+  rows.J1.row(i) = r.J1;
+  rows.J2.row(i) = r.J2;
+  rows.quad[i] = r.quad;
 }
 
 // Rows 0..2: x2 - x1 = 0 (coincident points).

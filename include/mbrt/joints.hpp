@@ -29,12 +29,12 @@ inline CarriedDifference joint_points(const JointFrame& f, const BodyMotion& m1,
 
 template <int N>
 inline void add_dot_row(ConstraintRows<N>& rows, int i, const CarriedVector& a, const CarriedVector& b) noexcept {
-  dot_row(a, b, rows.phi[i], rows.J1.row(i), rows.J2.row(i), rows.quad[i]);
+  set_row(rows, i, dot_row(a, b));
 }
 
 template <int N>
 inline void add_plane_row(ConstraintRows<N>& rows, int i, const CarriedVector& n, const CarriedDifference& d) noexcept {
-  normal_dot_difference_row(n, d, rows.phi[i], rows.J1.row(i), rows.J2.row(i), rows.quad[i]);
+  set_row(rows, i, normal_dot_difference_row(n, d));
 }
 }  // namespace detail
 

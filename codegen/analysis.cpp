@@ -1,0 +1,230 @@
+#include "analysis.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include <amd.h>
+
+#include "constraint_evaluation.hpp"
+
+namespace mbrt::codegen {
+
+int constraint_rows(JointType type) {
+  switch (type) {
+    case JointType::spherical: return 3;
+    case JointType::revolute: return 5;
+    case JointType::universal: return 4;
+    case JointType::cylindrical: return 4;
+    case JointType::prismatic: return 5;
+    case JointType::fixed: return 6;
+    case JointType::distance: return 1;
+  }
+  return 0;
+}
+
+const char* joint_type_name(JointType type) {
+  switch (type) {
+    case JointType::spherical: return "spherical";
+    case JointType::revolute: return "revolute";
+    case JointType::universal: return "universal";
+    case JointType::cylindrical: return "cylindrical";
+    case JointType::prismatic: return "prismatic";
+    case JointType::fixed: return "fixed";
+    case JointType::distance: return "distance";
+  }
+  return "?";
+}
+
+namespace {
+
+struct Pose {
+  Eigen::Vector3d r;
+  Eigen::Matrix3d R;
+};
+
+Pose initial_pose(const Model& model, int index) {
+  if (index == kGround) return {Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()};
+  const Body& b = model.bodies[static_cast<size_t>(index)];
+  return {b.position, b.particle ? Eigen::Matrix3d::Identity() : mbrt::rotation_matrix(b.orientation)};
+}
+
+bool is_particle(const Model& model, int index) {
+  return index != kGround && model.bodies[static_cast<size_t>(index)].particle;
+}
+
+// Body-frame offset of a world point; particles can only carry their own position.
+Eigen::Vector3d body_point(const Model& model, int index, const Eigen::Vector3d& world,
+                           const SourceLocation& where, const std::string& key) {
+  const Pose pose = initial_pose(model, index);
+  const Eigen::Vector3d s = pose.R.transpose() * (world - pose.r);
+  if (is_particle(model, index) && s.norm() > 1e-9 * std::max(1.0, world.norm())) {
+    throw ModelError(where, key,
+                     "particle '" + model.body_name(index) +
+                         "' has no extent: the point must be its position (off by " + std::to_string(s.norm()) + ")");
+  }
+  return is_particle(model, index) ? Eigen::Vector3d::Zero() : s;
+}
+
+// Two unit vectors completing a to a right-handed orthonormal triad (a, b, c).
+void complete_triad(const Eigen::Vector3d& a, Eigen::Vector3d& b, Eigen::Vector3d& c) {
+  Eigen::Index least;
+  a.cwiseAbs().minCoeff(&least);
+  b = a.cross(Eigen::Vector3d::Unit(least)).normalized();
+  c = a.cross(b);
+}
+
+mbrt::JointFrame joint_frame(const Model& model, const Joint& j, const std::string& key) {
+  const bool needs_orientation = j.type != JointType::spherical && j.type != JointType::distance;
+  for (int body : {j.body1, j.body2}) {
+    if (needs_orientation && is_particle(model, body)) {
+      throw ModelError(j.where, key,
+                       std::string("a ") + joint_type_name(j.type) + " joint needs rigid bodies; '" +
+                           model.body_name(body) + "' is a particle (use spherical or distance)");
+    }
+  }
+  const Pose p1 = initial_pose(model, j.body1);
+  const Pose p2 = initial_pose(model, j.body2);
+  mbrt::JointFrame f{};
+  if (j.type == JointType::distance) {
+    f.s1 = body_point(model, j.body1, j.point1, j.where, key + ".point1");
+    f.s2 = body_point(model, j.body2, j.point2, j.where, key + ".point2");
+    f.length = j.length;
+    return f;
+  }
+  f.s1 = body_point(model, j.body1, j.point, j.where, key + ".point");
+  f.s2 = body_point(model, j.body2, j.point, j.where, key + ".point");
+  Eigen::Vector3d a = j.type == JointType::universal ? j.axis1 : j.axis;
+  if (j.type == JointType::fixed || j.type == JointType::spherical) a = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d b, c;
+  complete_triad(a, b, c);
+  f.a1 = p1.R.transpose() * a;
+  f.b1 = p1.R.transpose() * b;
+  f.c1 = p1.R.transpose() * c;
+  f.a2 = p2.R.transpose() * (j.type == JointType::universal ? j.axis2 : a);
+  f.b2 = p2.R.transpose() * b;
+  f.c2 = p2.R.transpose() * c;
+  f.length = 0.0;
+  return f;
+}
+
+// Joints coupled through a shared moving body (ground couples nothing).
+std::vector<std::vector<int>> coupling(const Model& model) {
+  const size_t n = model.joints.size();
+  std::vector<std::vector<int>> out(n);
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < n; ++k) {
+      if (i == k) continue;
+      const Joint& a = model.joints[i];
+      const Joint& b = model.joints[k];
+      const auto shares = [](int x, const Joint& j) { return x != kGround && (x == j.body1 || x == j.body2); };
+      if (shares(a.body1, b) || shares(a.body2, b)) out[i].push_back(static_cast<int>(k));
+    }
+  }
+  return out;
+}
+
+FactorPattern factor_pattern(const std::vector<std::vector<int>>& coupled) {
+  const int n = static_cast<int>(coupled.size());
+  FactorPattern p;
+  p.coupled = coupled;
+  p.order.resize(static_cast<size_t>(n));
+  if (n > 0) {
+    std::vector<int> Ap{0}, Ai;
+    for (const auto& col : coupled) {
+      Ai.insert(Ai.end(), col.begin(), col.end());
+      Ap.push_back(static_cast<int>(Ai.size()));
+    }
+    double control[AMD_CONTROL], info[AMD_INFO];
+    amd_defaults(control);
+    if (amd_order(n, Ap.data(), Ai.empty() ? nullptr : Ai.data(), p.order.data(), control, info) < AMD_OK) {
+      for (int i = 0; i < n; ++i) p.order[static_cast<size_t>(i)] = i;  // keep the natural order
+    }
+  }
+  // Symbolic elimination on the block graph: eliminating k joins its
+  // remaining neighbours pairwise (the fill).
+  std::vector<std::set<int>> graph(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) graph[static_cast<size_t>(i)].insert(coupled[static_cast<size_t>(i)].begin(), coupled[static_cast<size_t>(i)].end());
+  std::vector<bool> eliminated(static_cast<size_t>(n), false);
+  p.lower.assign(static_cast<size_t>(n), {});
+  for (int k : p.order) {
+    std::vector<int> rest;
+    for (int i : graph[static_cast<size_t>(k)]) if (!eliminated[static_cast<size_t>(i)]) rest.push_back(i);
+    for (int i : rest) {
+      for (int m : rest) {
+        if (i != m && graph[static_cast<size_t>(i)].insert(m).second && i < m) ++p.fill_blocks;
+      }
+    }
+    p.lower[static_cast<size_t>(k)] = rest;
+    eliminated[static_cast<size_t>(k)] = true;
+  }
+  return p;
+}
+
+}  // namespace
+
+Analysis analyse(const Model& model) {
+  Analysis a;
+  a.gravity = model.gravity.has_value();
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    BodyPlan plan{static_cast<int>(i), !b.particle, b.particle ? a.particle_count++ : a.rigid_count++, false, false};
+    if (plan.rigid) {
+      const Eigen::Matrix3d off = b.inertia - Eigen::Matrix3d(b.inertia.diagonal().asDiagonal());
+      plan.principal_axes = off.cwiseAbs().maxCoeff() == 0.0;
+      const Eigen::Vector3d d = b.inertia.diagonal();
+      plan.isotropic = plan.principal_axes && d.x() == d.y() && d.y() == d.z();
+      if (!plan.isotropic) a.velocity_dependent_forces = true;
+    }
+    a.bodies.push_back(plan);
+  }
+  for (size_t i = 0; i < model.joints.size(); ++i) {
+    const Joint& j = model.joints[i];
+    const std::string key = "joints[" + std::to_string(i) + "]";
+    JointPlan plan{static_cast<int>(i), constraint_rows(j.type), a.constraint_rows, joint_frame(model, j, key)};
+    a.constraint_rows += plan.rows;
+    a.joints.push_back(plan);
+  }
+  for (size_t i = 0; i < model.forces.size(); ++i) {
+    const Force& f = model.forces[i];
+    const std::string key = "forces[" + std::to_string(i) + "]";
+    ForcePlan plan{static_cast<int>(i), {}, {}, Eigen::Vector3d::Zero()};
+    switch (f.type) {
+      case ForceType::spring_damper:
+        plan.spring = {body_point(model, f.body1, f.point1, f.where, key + ".point1"),
+                       body_point(model, f.body2, f.point2, f.where, key + ".point2"), f.stiffness, f.damping,
+                       f.rest_length};
+        if (f.damping != 0.0) a.velocity_dependent_forces = true;
+        break;
+      case ForceType::torque:
+        if (is_particle(model, f.body1) || is_particle(model, f.body2)) {
+          throw ModelError(f.where, key, "a torque needs rigid bodies; a particle cannot take one");
+        }
+        plan.torque = {initial_pose(model, f.body1).R.transpose() * f.axis, f.value};
+        break;
+      case ForceType::force:
+        plan.point = body_point(model, f.body, f.point, f.where, key + ".point");
+        break;
+    }
+    a.forces.push_back(plan);
+  }
+  a.pattern = factor_pattern(coupling(model));
+
+  // staggered-pcst parameters (docs/staggered-pcst.md).
+  const double h = model.solver.step;
+  a.stabilization = model.solver.stabilization > 0.0 ? model.solver.stabilization : 1.0 / h;
+  if (a.constraint_rows > 0) {
+    const StackedConstraints c = evaluate_constraints(model, a.joints);
+    const Eigen::MatrixXd S = c.B * inverse_mass_matrix(model) * c.B.transpose();
+    a.regularization = model.solver.penalty * S.diagonal().maxCoeff();
+  }
+
+  if (!a.gravity) a.skipped.push_back("gravity: no gravity term");
+  if (a.particle_count > 0) a.skipped.push_back(std::to_string(a.particle_count) + " particle(s): no rotational state");
+  int principal = 0;
+  for (const BodyPlan& b : a.bodies) principal += b.rigid && b.principal_axes;
+  if (principal > 0) a.skipped.push_back(std::to_string(principal) + " principal-axis bodies: no inertia products");
+  if (!a.velocity_dependent_forces) a.skipped.push_back("no velocity-dependent forces: one stage per step");
+  return a;
+}
+
+}  // namespace mbrt::codegen

@@ -1,0 +1,71 @@
+// Analysis of a validated model: what the generated step contains. Body
+// frames of joints and forces, the constraint rows, the fixed block sparsity
+// of S = B M^-1 B^T with a fill-reducing elimination order, and which terms
+// the scene needs at all.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <mbrt/forces.hpp>
+#include <mbrt/joints.hpp>
+
+#include "model.hpp"
+
+namespace mbrt::codegen {
+
+struct BodyPlan {
+  int model_index;      // index in Model::bodies
+  bool rigid;
+  int slot;             // index in State::rigid or State::particle
+  bool principal_axes;  // inertia diagonal in body axes: no product terms
+  bool isotropic;       // equal principal moments: no gyroscopic torque
+};
+
+struct JointPlan {
+  int model_index;
+  int rows;             // constraint rows of this joint
+  int first_row;        // offset in the stacked multiplier vector
+  mbrt::JointFrame frame;
+};
+
+struct ForcePlan {
+  int model_index;
+  mbrt::SpringDamper spring;  // spring_damper
+  mbrt::AxialTorque torque;   // torque
+  Eigen::Vector3d point;      // force: body-frame point
+};
+
+// Block pattern of the Cholesky factor of S, in elimination order. Blocks are
+// indexed by joint (JointPlan index).
+struct FactorPattern {
+  std::vector<int> order;                   // joints in elimination order
+  std::vector<std::vector<int>> lower;      // lower[k]: joints i eliminated after k with L(i,k) != 0
+  std::vector<std::vector<int>> coupled;    // coupled[j]: joints sharing a moving body with j (S(i,j) != 0)
+  int fill_blocks = 0;                      // blocks of L that are zero in S
+};
+
+struct Analysis {
+  std::vector<BodyPlan> bodies;  // same order as Model::bodies
+  int rigid_count = 0;
+  int particle_count = 0;
+  std::vector<JointPlan> joints;
+  int constraint_rows = 0;
+  std::vector<ForcePlan> forces;
+  FactorPattern pattern;
+  bool gravity = false;
+  bool velocity_dependent_forces = false;  // gyroscopic or damping terms: two stages per step
+  double regularization = 0.0;             // added to the diagonal of S
+  double stabilization = 0.0;              // alpha, 1/s
+  std::vector<std::string> skipped;        // what the scene does not need, for reports
+};
+
+// Throws ModelError for models the generator cannot handle (e.g. a revolute
+// joint on a particle).
+Analysis analyse(const Model& model);
+
+// Row count of a joint type.
+int constraint_rows(JointType type);
+const char* joint_type_name(JointType type);
+
+}  // namespace mbrt::codegen

@@ -1,0 +1,26 @@
+// The model's constraints evaluated at its initial state with dynamic-size
+// matrices: for checks and projection at generation time, never on the loop
+// path. Each body owns 6 columns [v; w_body]; particles' w columns are zero.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "analysis.hpp"
+
+namespace mbrt::codegen {
+
+struct StackedConstraints {
+  Eigen::VectorXd phi;
+  Eigen::VectorXd phi_dot;
+  Eigen::MatrixXd B;  // constraint_rows x 6 * bodies
+};
+
+StackedConstraints evaluate_constraints(const Model& model, const std::vector<JointPlan>& joints);
+
+// Diagonal-block inverse mass matrix, 6 * bodies square (zero rotational
+// blocks for particles).
+Eigen::MatrixXd inverse_mass_matrix(const Model& model);
+
+}  // namespace mbrt::codegen

@@ -1,0 +1,35 @@
+// The generator pipeline: model file -> validated model -> analysis ->
+// consistency check (or projection) -> emitted C++ on disk.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "emit_cpp.hpp"
+
+namespace mbrt::codegen {
+
+// Command-line overrides of the model file's solver settings.
+struct GenerateOptions {
+  std::optional<std::string> scheme;
+  std::optional<double> step;
+  std::optional<int> euler_updates;
+  std::optional<std::string> name;  // replaces the model's name (and C++ namespace)
+  bool project_initial = false;
+};
+
+struct Generated {
+  Model model;
+  Analysis analysis;
+  GeneratedCode code;
+};
+
+// Throws ModelError on a bad model, including inconsistent initial
+// conditions without --project-initial.
+Generated generate(const std::string& model_path, const GenerateOptions& options);
+
+// Writes <name>.hpp and <name>.cpp into dir (created if missing); files whose
+// content is unchanged are not touched, so builds stay incremental.
+void write_generated(const GeneratedCode& code, const std::string& dir);
+
+}  // namespace mbrt::codegen

@@ -1,0 +1,623 @@
+// Reads a model file (YAML) into a Model and validates it. Every problem is
+// reported as a ModelError naming the file, 1-based line and column, the key
+// path a user recognizes ("bodies[1].mass") and what was expected.
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <yaml-cpp/yaml.h>
+
+#include "model.hpp"
+
+namespace mbrt::codegen {
+
+namespace {
+
+using Keys = std::vector<std::string>;
+
+const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "solver"};
+const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
+                        "orientation", "velocity", "angular_velocity"};
+const Keys kParticleOnlyForbidden = {"inertia", "orientation", "angular_velocity"};
+const Keys kJointKeys = {"name", "type", "body1", "body2", "point", "axis",
+                         "axis1", "axis2", "point1", "point2", "length"};
+const Keys kForceKeys = {"type",      "body1",   "body2",       "point1", "point2", "stiffness",
+                         "damping",   "rest_length", "axis",    "value",  "body",   "point",
+                         "vector"};
+const Keys kSolverKeys = {"scheme", "step", "euler_updates", "penalty", "stabilization"};
+
+const std::vector<std::pair<std::string, JointType>> kJointTypes = {
+    {"spherical", JointType::spherical},     {"revolute", JointType::revolute},
+    {"universal", JointType::universal},     {"cylindrical", JointType::cylindrical},
+    {"prismatic", JointType::prismatic},     {"fixed", JointType::fixed},
+    {"distance", JointType::distance}};
+const std::vector<std::pair<std::string, ForceType>> kForceTypes = {
+    {"spring_damper", ForceType::spring_damper},
+    {"torque", ForceType::torque},
+    {"force", ForceType::force}};
+const Keys kSchemes = {"staggered-pcst", "staggered-nps", "ali3p", "blajer", "baumgarte"};
+
+// Axes shorter than this cannot be normalized meaningfully.
+constexpr double kMinAxisLength = 1e-12;
+// Tolerances the file format promises (docs: Euler parameters, universal axes).
+constexpr double kUnitNormTolerance = 1e-6;
+constexpr double kPerpendicularTolerance = 1e-6;
+
+std::string join(const Keys& words) {
+  std::string s;
+  for (const auto& w : words) s += (s.empty() ? "" : ", ") + w;
+  return s;
+}
+
+bool contains(const Keys& words, const std::string& w) {
+  return std::find(words.begin(), words.end(), w) != words.end();
+}
+
+// Computed numbers (norms, eigenvalues) in messages: enough digits to see a
+// 1e-6 deviation from 1, no trailing noise.
+std::string format_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", x);
+  return buf;
+}
+
+SourceLocation location(const std::string& file, const YAML::Mark& mark) {
+  if (mark.is_null()) return {file, 0, 0};
+  return {file, mark.line + 1, mark.column + 1};
+}
+
+bool is_quoted(const YAML::Node& node) { return node.Tag() == "!"; }
+
+bool decodes_as_number(const YAML::Node& node) {
+  double x;
+  return node.IsScalar() && !is_quoted(node) && YAML::convert<double>::decode(node, x);
+}
+
+// What the user wrote, for "expected ..., got <describe>".
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar:
+      if (is_quoted(node)) return "the string \"" + node.Scalar() + "\"";
+      if (decodes_as_number(node)) return node.Scalar();
+      return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence:
+      return "a list of " + std::to_string(node.size()) + (node.size() == 1 ? " item" : " items");
+    case YAML::NodeType::Map:
+      return "a map";
+    default:
+      return "an empty value";
+  }
+}
+
+// A value in the file with its key path and where it is.
+struct Value {
+  YAML::Node node;
+  std::string key;
+  SourceLocation where;
+};
+
+[[noreturn]] void fail(const Value& v, const std::string& message) {
+  throw ModelError(v.where, v.key, message);
+}
+
+[[noreturn]] void fail_expected(const Value& v, const std::string& expected) {
+  fail(v, "expected " + expected + ", got " + describe(v.node));
+}
+
+// Element i of a list, keyed "parent[i]".
+Value element(const Value& list, std::size_t i) {
+  const YAML::Node item = list.node[i];
+  return {item, list.key + "[" + std::to_string(i) + "]", location(list.where.file, item.Mark())};
+}
+
+// A YAML map with its key path: rejects unknown, repeated and non-scalar keys
+// up front, then hands out values by key.
+class Section {
+ public:
+  Section(const Value& map, const Keys& allowed) : map_(map) {
+    if (!map.node.IsMap()) fail_expected(map, "a map with keys " + join(allowed));
+    // entry is a lifetime-extended copy: yaml-cpp iterators yield temporaries,
+    // so `it->first` would dangle.
+    for (const auto& entry : map.node) {
+      const YAML::Node key_node = entry.first;
+      const YAML::Mark key_mark = key_node.Mark();
+      if (!key_node.IsScalar()) {
+        fail_expected({key_node, map.key, location(file(), key_mark)}, "a key name");
+      }
+      const std::string name = key_node.Scalar();
+      const SourceLocation key_where = location(file(), key_mark);
+      if (!contains(allowed, name)) {
+        throw ModelError(key_where, path(name),
+                         "unknown key '" + name + "' (expected one of: " + join(allowed) + ")");
+      }
+      if (const Entry* first = lookup(name)) {
+        throw ModelError(key_where, path(name),
+                         "duplicate key '" + name + "' (first given at line " +
+                             std::to_string(first->key_where.line) + ")");
+      }
+      // Point at the value when it is on the key's line (e.g. "mass: -1"),
+      // else at the key: empty values and block lists start elsewhere.
+      const YAML::Mark value_mark = entry.second.Mark();
+      const bool same_line = !value_mark.is_null() && value_mark.line == key_mark.line;
+      entries_.push_back(
+          {name, key_where,
+           {entry.second, path(name), same_line ? location(file(), value_mark) : key_where}});
+    }
+  }
+
+  std::optional<Value> find(const std::string& name) const {
+    if (const Entry* e = lookup(name)) return e->value;
+    return std::nullopt;
+  }
+
+  // A required key; `hint` is appended to the message when it is missing.
+  Value get(const std::string& name, const std::string& hint = "") const {
+    if (const Entry* e = lookup(name)) return e->value;
+    throw ModelError(map_.where, path(name), "missing required key '" + name + "'" + hint);
+  }
+
+  // Keys valid somewhere in this kind of map but not for this variant
+  // (an axis on a spherical joint): reject rather than silently ignore.
+  void restrict_to(const Keys& keys, const std::string& owner) const {
+    for (const auto& e : entries_) {
+      if (!contains(keys, e.name)) {
+        throw ModelError(e.key_where, e.value.key,
+                         "key '" + e.name + "' does not apply to " + owner + " (it takes: " +
+                             join(keys) + ")");
+      }
+    }
+  }
+
+ private:
+  struct Entry {
+    std::string name;
+    SourceLocation key_where;
+    Value value;
+  };
+
+  const std::string& file() const { return map_.where.file; }
+  std::string path(const std::string& name) const {
+    return map_.key.empty() ? name : map_.key + "." + name;
+  }
+  const Entry* lookup(const std::string& name) const {
+    for (const auto& e : entries_) {
+      if (e.name == name) return &e;
+    }
+    return nullptr;
+  }
+
+  Value map_;
+  std::vector<Entry> entries_;
+};
+
+// ---- scalars --------------------------------------------------------------
+
+// A finite number; `expected` names the constraint for type errors too, so a
+// string where a positive number belongs says "expected a number > 0".
+double read_number(const Value& v, const std::string& expected = "a number") {
+  double x = 0.0;
+  // Quoted scalars are strings even when they look like numbers.
+  if (!v.node.IsScalar() || is_quoted(v.node) || !YAML::convert<double>::decode(v.node, x)) {
+    fail_expected(v, expected);
+  }
+  if (!std::isfinite(x)) fail_expected(v, "a finite number");
+  return x;
+}
+
+double read_positive(const Value& v) {
+  const double x = read_number(v, "a number > 0");
+  if (!(x > 0.0)) fail_expected(v, "a number > 0");
+  return x;
+}
+
+double read_non_negative(const Value& v) {
+  const double x = read_number(v, "a number >= 0");
+  if (!(x >= 0.0)) fail_expected(v, "a number >= 0");
+  return x;
+}
+
+// Strict decimal integer: "2.0" and "2.5" are rejected, not truncated.
+int read_integer_at_least(const Value& v, int min) {
+  const std::string expected = "an integer >= " + std::to_string(min);
+  if (!v.node.IsScalar() || is_quoted(v.node)) fail_expected(v, expected);
+  const std::string& s = v.node.Scalar();
+  int x = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
+  if (ec != std::errc() || end != s.data() + s.size() || x < min) fail_expected(v, expected);
+  return x;
+}
+
+// Only true/false (YAML 1.2): "yes", "on" etc. are more likely typos than intent.
+bool read_bool(const Value& v) {
+  if (v.node.IsScalar() && !is_quoted(v.node)) {
+    const std::string& s = v.node.Scalar();
+    if (s == "true" || s == "True" || s == "TRUE") return true;
+    if (s == "false" || s == "False" || s == "FALSE") return false;
+  }
+  fail_expected(v, "true or false");
+}
+
+std::string read_string(const Value& v, const std::string& expected = "a name") {
+  if (!v.node.IsScalar() || v.node.Scalar().empty()) fail_expected(v, expected);
+  return v.node.Scalar();
+}
+
+// Model and body names become C++ identifiers in generated code.
+std::string read_identifier(const Value& v) {
+  const std::string expected =
+      "a name matching [a-z][a-z0-9_]* (a lowercase letter, then lowercase letters, digits or _)";
+  const std::string s = read_string(v, expected);
+  const bool ok = s[0] >= 'a' && s[0] <= 'z' &&
+                  std::all_of(s.begin(), s.end(), [](char c) {
+                    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+                  });
+  if (!ok) fail_expected(v, expected);
+  return s;
+}
+
+std::string read_choice(const Value& v, const Keys& choices) {
+  const std::string expected = "one of: " + join(choices);
+  if (!v.node.IsScalar() || !contains(choices, v.node.Scalar())) fail_expected(v, expected);
+  return v.node.Scalar();
+}
+
+// A type name mapped to its enum value.
+template <typename Enum>
+Enum read_type(const Value& v, const std::vector<std::pair<std::string, Enum>>& types) {
+  Keys names;
+  for (const auto& t : types) names.push_back(t.first);
+  const std::string s = read_choice(v, names);
+  return std::find_if(types.begin(), types.end(), [&](const auto& t) { return t.first == s; })
+      ->second;
+}
+
+// Names must be unique within their kind; `seen` maps each name to the line
+// where it was first defined.
+void check_unique(const Value& name_value, const std::string& name, const std::string& kind,
+                  std::map<std::string, int>& seen) {
+  const auto [it, inserted] = seen.emplace(name, name_value.where.line);
+  if (!inserted) {
+    fail(name_value, "duplicate " + kind + " name '" + name + "' (first defined at line " +
+                         std::to_string(it->second) + ")");
+  }
+}
+
+// ---- vectors --------------------------------------------------------------
+
+// A list of numbers whose length is one of `sizes`.
+Eigen::VectorXd read_numbers(const Value& v, const std::vector<std::size_t>& sizes,
+                             const std::string& expected) {
+  if (!v.node.IsSequence() ||
+      std::find(sizes.begin(), sizes.end(), v.node.size()) == sizes.end()) {
+    fail_expected(v, expected);
+  }
+  Eigen::VectorXd x(static_cast<Eigen::Index>(v.node.size()));
+  for (std::size_t i = 0; i < v.node.size(); ++i) {
+    x(static_cast<Eigen::Index>(i)) = read_number(element(v, i));
+  }
+  return x;
+}
+
+Eigen::Vector3d read_vector3(const Value& v) {
+  return read_numbers(v, {3}, "a list of 3 numbers");
+}
+
+// A direction: normalized, so only its length being zero is an error.
+Eigen::Vector3d read_axis(const Value& v) {
+  const Eigen::Vector3d a = read_vector3(v);
+  if (!(a.norm() >= kMinAxisLength)) fail(v, "zero-length axis (expected a nonzero direction)");
+  return a.normalized();
+}
+
+// Euler parameters must already be unit (a typo should not silently become a
+// different rotation); within tolerance they are renormalized exactly.
+Eigen::Vector4d read_euler_parameters(const Value& v) {
+  const Eigen::Vector4d p = read_numbers(v, {4}, "a list of 4 numbers (Euler parameters e0..e3)");
+  const double n = p.norm();
+  if (!(std::abs(n - 1.0) <= kUnitNormTolerance)) {
+    fail(v, "Euler parameters must have unit norm (|p| = " + format_number(n) +
+                "); [1, 0, 0, 0] is no rotation");
+  }
+  return p / n;
+}
+
+// [Ixx, Iyy, Izz] or [Ixx, Iyy, Izz, Ixy, Ixz, Iyz]; products are the matrix
+// entries themselves (J(0,1) = Ixy), not their negatives.
+Eigen::Matrix3d read_inertia(const Value& v) {
+  const Eigen::VectorXd x = read_numbers(
+      v, {3, 6}, "a list of 3 or 6 numbers ([Ixx, Iyy, Izz] or [Ixx, Iyy, Izz, Ixy, Ixz, Iyz])");
+  Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
+  j.diagonal() = x.head<3>();
+  if (x.size() == 6) {
+    j(0, 1) = j(1, 0) = x(3);
+    j(0, 2) = j(2, 0) = x(4);
+    j(1, 2) = j(2, 1) = x(5);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(j, Eigen::EigenvaluesOnly);
+  const double smallest = eig.eigenvalues()(0);  // sorted ascending
+  if (!(smallest > 0.0)) {
+    fail(v, "inertia is not positive definite (smallest eigenvalue " + format_number(smallest) +
+                ")");
+  }
+  return j;
+}
+
+// ---- model parts ----------------------------------------------------------
+
+// "ground" or a declared body; returns kGround or the index in model.bodies.
+int read_body_ref(const Value& v, const Model& model) {
+  Keys names = {"ground"};
+  for (const auto& b : model.bodies) names.push_back(b.name);
+  const std::string s = read_string(v, "a body name (" + join(names) + ")");
+  if (s == "ground") return kGround;
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    if (model.bodies[i].name == s) return static_cast<int>(i);
+  }
+  fail(v, "unknown body '" + s + "' (bodies: " + join(names) + ")");
+}
+
+// An optional list (joints, forces): an empty value means none.
+bool is_empty_or_list(const Value& v, const std::string& expected) {
+  if (v.node.IsNull()) return true;
+  if (!v.node.IsSequence()) fail_expected(v, expected);
+  return false;
+}
+
+Body parse_body(const Value& item, std::map<std::string, int>& names_seen) {
+  const Section s(item, kBodyKeys);
+  Body b;
+  b.where = item.where;
+  const Value name = s.get("name");
+  b.name = read_identifier(name);
+  if (b.name == "ground") {
+    fail(name, "'ground' is the reserved name of the fixed world body; choose another name");
+  }
+  check_unique(name, b.name, "body", names_seen);
+  b.mass = read_positive(s.get("mass"));
+  if (auto v = s.find("particle")) b.particle = read_bool(*v);
+  if (b.particle) {
+    // A particle has no rotational state, so rotational data is a mistake.
+    for (const auto& key : kParticleOnlyForbidden) {
+      if (auto v = s.find(key)) {
+        fail(*v, "a particle must not have " + key + " (remove it, or set particle: false)");
+      }
+    }
+  } else {
+    b.inertia = read_inertia(
+        s.get("inertia", " (a rigid body needs [Ixx, Iyy, Izz] or [Ixx, Iyy, Izz, Ixy, Ixz, Iyz];"
+                         " set particle: true for a point mass)"));
+    if (auto v = s.find("orientation")) b.orientation = read_euler_parameters(*v);
+    if (auto v = s.find("angular_velocity")) b.angular_velocity = read_vector3(*v);
+  }
+  if (auto v = s.find("position")) b.position = read_vector3(*v);
+  if (auto v = s.find("velocity")) b.velocity = read_vector3(*v);
+  return b;
+}
+
+// The keys each joint type takes, besides name, type, body1, body2.
+Keys joint_keys(JointType type) {
+  Keys keys = {"name", "type", "body1", "body2"};
+  switch (type) {
+    case JointType::revolute:
+    case JointType::cylindrical:
+    case JointType::prismatic: keys.insert(keys.end(), {"point", "axis"}); break;
+    case JointType::universal: keys.insert(keys.end(), {"point", "axis1", "axis2"}); break;
+    case JointType::distance: keys.insert(keys.end(), {"point1", "point2", "length"}); break;
+    case JointType::spherical:
+    case JointType::fixed: keys.push_back("point"); break;
+  }
+  return keys;
+}
+
+Joint parse_joint(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
+  const Section s(item, kJointKeys);
+  Joint j;
+  j.where = item.where;
+  const Value name = s.get("name");
+  j.name = read_string(name);
+  check_unique(name, j.name, "joint", names_seen);
+  const Value type = s.get("type");
+  j.type = read_type(type, kJointTypes);
+  s.restrict_to(joint_keys(j.type), "a " + type.node.Scalar() + " joint");
+
+  j.body1 = read_body_ref(s.get("body1"), model);
+  const Value body2 = s.get("body2");
+  j.body2 = read_body_ref(body2, model);
+  if (j.body1 == j.body2) {
+    fail(body2, "a joint must connect two different bodies (both are '" +
+                    model.body_name(j.body1) + "')");
+  }
+
+  switch (j.type) {
+    case JointType::revolute:
+    case JointType::cylindrical:
+    case JointType::prismatic:
+      j.point = read_vector3(s.get("point"));
+      j.axis = read_axis(s.get("axis"));
+      break;
+    case JointType::universal: {
+      j.point = read_vector3(s.get("point"));
+      j.axis1 = read_axis(s.get("axis1"));
+      const Value axis2 = s.get("axis2");
+      j.axis2 = read_axis(axis2);
+      const double c = j.axis1.dot(j.axis2);
+      if (!(std::abs(c) < kPerpendicularTolerance)) {
+        fail(axis2, "axis1 and axis2 of a universal joint must be perpendicular (axis1 . axis2 = " +
+                        format_number(c) + " after normalizing)");
+      }
+      break;
+    }
+    case JointType::distance: {
+      j.point1 = read_vector3(s.get("point1"));
+      const Value point2 = s.get("point2");
+      j.point2 = read_vector3(point2);
+      if (auto v = s.find("length")) {
+        j.length = read_positive(*v);
+      } else {
+        j.length = (j.point2 - j.point1).norm();
+        if (!(j.length > 0.0)) {
+          fail(point2, "zero-length distance: point1 and point2 coincide "
+                       "(move them apart or give a length > 0)");
+        }
+      }
+      break;
+    }
+    case JointType::spherical:
+    case JointType::fixed:
+      j.point = read_vector3(s.get("point"));
+      break;
+  }
+  return j;
+}
+
+Keys force_keys(ForceType type) {
+  switch (type) {
+    case ForceType::spring_damper:
+      return {"type", "body1", "body2", "point1", "point2", "stiffness", "damping", "rest_length"};
+    case ForceType::torque: return {"type", "body1", "body2", "axis", "value"};
+    case ForceType::force: break;
+  }
+  return {"type", "body", "point", "vector"};
+}
+
+Force parse_force(const Value& item, const Model& model) {
+  const Section s(item, kForceKeys);
+  Force f;
+  f.where = item.where;
+  const Value type = s.get("type");
+  f.type = read_type(type, kForceTypes);
+  const std::string& type_name = type.node.Scalar();
+  s.restrict_to(force_keys(f.type), "a " + type_name + " force");
+
+  if (f.type == ForceType::force) {
+    const Value body = s.get("body");
+    f.body = read_body_ref(body, model);
+    if (f.body == kGround) fail(body, "a force must act on a body, not on ground");
+    f.point = model.bodies[static_cast<std::size_t>(f.body)].position;
+    if (auto v = s.find("point")) f.point = read_vector3(*v);
+    f.vector = read_vector3(s.get("vector"));
+    return f;
+  }
+
+  // spring_damper and torque act between two bodies; on one body they
+  // would cancel out, which is never what was meant.
+  f.body1 = read_body_ref(s.get("body1"), model);
+  const Value body2 = s.get("body2");
+  f.body2 = read_body_ref(body2, model);
+  if (f.body1 == f.body2) {
+    fail(body2, "a " + type_name + " must connect two different bodies (both are '" +
+                    model.body_name(f.body1) + "')");
+  }
+  if (f.type == ForceType::spring_damper) {
+    f.point1 = read_vector3(s.get("point1"));
+    f.point2 = read_vector3(s.get("point2"));
+    f.stiffness = read_non_negative(s.get("stiffness"));
+    if (auto v = s.find("damping")) f.damping = read_non_negative(*v);
+    f.rest_length = read_non_negative(s.get("rest_length"));
+  } else {
+    f.axis = read_axis(s.get("axis"));
+    f.value = read_number(s.get("value"));
+  }
+  return f;
+}
+
+SolverSettings parse_solver(const Value& v) {
+  SolverSettings solver;
+  if (v.node.IsNull()) return solver;  // "solver:" with nothing under it: defaults
+  const Section s(v, kSolverKeys);
+  if (auto x = s.find("scheme")) solver.scheme = read_choice(*x, kSchemes);
+  if (auto x = s.find("step")) solver.step = read_positive(*x);
+  if (auto x = s.find("euler_updates")) solver.euler_updates = read_integer_at_least(*x, 1);
+  if (auto x = s.find("penalty")) solver.penalty = read_non_negative(*x);
+  if (auto x = s.find("stabilization")) solver.stabilization = read_non_negative(*x);
+  return solver;
+}
+
+Model build_model(const YAML::Node& root, const std::string& file) {
+  if (!root.IsDefined() || root.IsNull()) {
+    throw ModelError({file, 1, 1}, "",
+                     "the model file is empty (expected a map with keys " + join(kTopKeys) + ")");
+  }
+  const Value top{root, "", location(file, root.Mark())};
+  const Section s(top, kTopKeys);
+
+  Model model;
+  model.file = file;
+  model.name = read_identifier(s.get("name"));
+  if (auto v = s.find("gravity")) model.gravity = read_vector3(*v);
+
+  // Bodies first, whatever the key order: joints and forces refer to them.
+  const Value bodies = s.get("bodies");
+  if (!bodies.node.IsSequence() || bodies.node.size() == 0) {
+    fail_expected(bodies, "a non-empty list of bodies");
+  }
+  std::map<std::string, int> body_names;
+  for (std::size_t i = 0; i < bodies.node.size(); ++i) {
+    model.bodies.push_back(parse_body(element(bodies, i), body_names));
+  }
+
+  if (auto joints = s.find("joints"); joints && !is_empty_or_list(*joints, "a list of joints")) {
+    std::map<std::string, int> joint_names;
+    for (std::size_t i = 0; i < joints->node.size(); ++i) {
+      model.joints.push_back(parse_joint(element(*joints, i), model, joint_names));
+    }
+  }
+
+  if (auto forces = s.find("forces"); forces && !is_empty_or_list(*forces, "a list of forces")) {
+    for (std::size_t i = 0; i < forces->node.size(); ++i) {
+      model.forces.push_back(parse_force(element(*forces, i), model));
+    }
+  }
+
+  if (auto v = s.find("solver")) model.solver = parse_solver(*v);
+  return model;
+}
+
+}  // namespace
+
+Model parse_model(const std::string& yaml_text, const std::string& file_name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw ModelError(location(file_name, e.mark), "", "invalid YAML: " + e.msg);
+  }
+  try {
+    return build_model(root, file_name);
+  } catch (const YAML::Exception& e) {
+    // Not expected (all access is checked), but never let a raw yaml-cpp
+    // exception reach the user.
+    throw ModelError(location(file_name, e.mark), "", "cannot read model: " + e.msg);
+  }
+}
+
+Model load_model(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw ModelError({path, 0, 0}, "", "cannot read the model file '" + path + "': it is a directory");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw ModelError({path, 0, 0}, "",
+                     "cannot open the model file '" + path + "' (" + std::strerror(errno) + ")");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) {
+    throw ModelError({path, 0, 0}, "", "cannot read the model file '" + path + "'");
+  }
+  return parse_model(text.str(), path);
+}
+
+}  // namespace mbrt::codegen

@@ -1,0 +1,34 @@
+// Types every generated model shares in its interface.
+#pragma once
+
+#include "mbrt/body_state.hpp"
+#include "mbrt/step_status.hpp"
+
+namespace mbrt {
+
+struct BodyInfo {
+  const char* name;
+  bool rigid;
+  int slot;  // index in State::rigid or State::particle
+};
+
+struct JointInfo {
+  const char* name;
+  const char* type;
+  int first_row;
+  int rows;
+};
+
+struct Energy {
+  double kinetic;
+  double potential;  // gravity (zero at the origin) plus springs
+  double total() const noexcept { return kinetic + potential; }
+};
+
+// Largest constraint residuals, position (phi) and velocity (phi_dot) level.
+struct ConstraintViolation {
+  double position;
+  double velocity;
+};
+
+}  // namespace mbrt

@@ -1,0 +1,18 @@
+// Everything a generated model's implementation includes.
+#pragma once
+
+#include <cmath>
+
+#include "mbrt/dense_cholesky.hpp"
+#include "mbrt/forces.hpp"
+#include "mbrt/joints.hpp"
+#include "mbrt/mass_properties.hpp"
+#include "mbrt/model_api.hpp"
+#include "mbrt/rotation.hpp"
+
+namespace mbrt {
+
+inline bool all_finite(const Vec3& x) noexcept { return std::isfinite(x.sum()); }
+inline bool all_finite(const Vec4& x) noexcept { return std::isfinite(x.sum()); }
+
+}  // namespace mbrt

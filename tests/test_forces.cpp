@@ -1,0 +1,234 @@
+// Independent tests of forces.hpp and the inertia products of body_state.hpp.
+// References: finite differences of the energy, moments computed in world axes,
+// Euler's equations written out for principal axes, and Eigen's geometry module.
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "mbrt/forces.hpp"
+
+namespace {
+
+using mbrt::BodyMotion;
+using mbrt::BodyPose;
+using mbrt::BodyVelocity;
+using mbrt::Mat3;
+using mbrt::Vec3;
+using Quat = Eigen::Quaterniond;
+
+class Random {
+ public:
+  explicit Random(unsigned seed) : gen_(seed) {}
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen_); }
+  Vec3 vec3(double scale) {
+    Vec3 x;
+    for (int i = 0; i < 3; ++i) x[i] = uniform(-scale, scale);
+    return x;
+  }
+  Mat3 rotation() {
+    Eigen::Vector4d c;
+    do {
+      for (int i = 0; i < 4; ++i) c[i] = std::normal_distribution<double>(0.0, 1.0)(gen_);
+    } while (c.norm() < 1e-3);
+    c.normalize();
+    return Quat(c[0], c[1], c[2], c[3]).toRotationMatrix();
+  }
+
+ private:
+  std::mt19937 gen_;
+};
+
+double max_abs(const Vec3& x) { return x.cwiseAbs().maxCoeff(); }
+
+struct Body {
+  BodyPose pose;
+  BodyVelocity vel;
+};
+
+Body random_body(Random& rnd) {
+  Body b{BodyPose{rnd.vec3(1.0), rnd.rotation()}, BodyVelocity{rnd.vec3(1.0), rnd.vec3(2.0)}};
+  return b;
+}
+
+// World position and velocity of body point s, from the rigid velocity field
+// x_dot = v + omega_world x (x - r) with omega_world = R w.
+Vec3 world_point(const Body& b, const Vec3& s) { return b.pose.r + b.pose.R * s; }
+Vec3 world_point_velocity(const Body& b, const Vec3& s) {
+  return b.vel.v + (b.pose.R * b.vel.w).cross(b.pose.R * s);
+}
+
+mbrt::SpringDamperForce evaluate(const mbrt::SpringDamper& e, const Body& b1, const Body& b2) {
+  return mbrt::spring_damper(e, BodyMotion{b1.pose, b1.vel}, BodyMotion{b2.pose, b2.vel});
+}
+
+TEST_CASE("spring_damper: attachment points and energy 1/2 k (l - L)^2") {
+  Random rnd(301);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Body b1 = random_body(rnd), b2 = random_body(rnd);
+    const mbrt::SpringDamper e{rnd.vec3(0.5), rnd.vec3(0.5), rnd.uniform(1, 100), rnd.uniform(0, 5),
+                               rnd.uniform(0.2, 2)};
+    const auto out = evaluate(e, b1, b2);
+    CHECK(max_abs(out.x1 - world_point(b1, e.s1)) < 1e-14);
+    CHECK(max_abs(out.x2 - world_point(b2, e.s2)) < 1e-14);
+    const double stretch = (out.x2 - out.x1).norm() - e.rest_length;
+    CHECK(out.energy == doctest::Approx(0.5 * e.stiffness * stretch * stretch).epsilon(1e-13));
+  }
+}
+
+TEST_CASE("spring force on body 2 is minus the gradient of the energy with respect to x2 (no damping)") {
+  Random rnd(302);
+  const double eps = 1e-6;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Body b1 = random_body(rnd), b2 = random_body(rnd);
+    const mbrt::SpringDamper e{rnd.vec3(0.5), rnd.vec3(0.5), rnd.uniform(1, 100), 0.0, rnd.uniform(0.2, 2)};
+    const Vec3 f2 = evaluate(e, b1, b2).f2;
+    // Translating body 2 by delta moves x2 by delta.
+    Vec3 gradient;
+    for (int k = 0; k < 3; ++k) {
+      Body plus = b2, minus = b2;
+      plus.pose.r[k] += eps;
+      minus.pose.r[k] -= eps;
+      gradient[k] = (evaluate(e, b1, plus).energy - evaluate(e, b1, minus).energy) / (2 * eps);
+    }
+    CHECK(max_abs(f2 + gradient) < 1e-7 * std::max(1.0, gradient.norm()));
+    CHECK(f2.norm() > 1e-3);
+  }
+}
+
+TEST_CASE("damping force is -c (n . relative velocity) n and ignores sliding across the line") {
+  Random rnd(303);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Body b1 = random_body(rnd), b2 = random_body(rnd);
+    const double c = rnd.uniform(0.5, 5);
+    const mbrt::SpringDamper pure_damper{rnd.vec3(0.5), rnd.vec3(0.5), 0.0, c, rnd.uniform(0.2, 2)};
+    const Vec3 x1 = world_point(b1, pure_damper.s1), x2 = world_point(b2, pure_damper.s2);
+    const Vec3 n = (x2 - x1).normalized();
+    const Vec3 relative = world_point_velocity(b2, pure_damper.s2) - world_point_velocity(b1, pure_damper.s1);
+    const Vec3 expected = -c * n.dot(relative) * n;
+    const Vec3 f2 = evaluate(pure_damper, b1, b2).f2;
+    CHECK(max_abs(f2 - expected) < 1e-13 * std::max(1.0, expected.norm()));
+    CHECK(expected.norm() > 1e-6);
+
+    // Adding velocity perpendicular to the line leaves the force unchanged.
+    Body sliding = b2;
+    sliding.vel.v += n.cross(rnd.vec3(1.0));
+    CHECK(max_abs(evaluate(pure_damper, b1, sliding).f2 - expected) < 1e-13 * std::max(1.0, expected.norm()));
+
+    // Spring and damper superpose.
+    mbrt::SpringDamper both = pure_damper;
+    both.stiffness = rnd.uniform(1, 100);
+    mbrt::SpringDamper spring = both;
+    spring.damping = 0.0;
+    const Vec3 sum = evaluate(spring, b1, b2).f2 + expected;
+    CHECK(max_abs(evaluate(both, b1, b2).f2 - sum) < 1e-12 * std::max(1.0, sum.norm()));
+  }
+}
+
+TEST_CASE("spring_damper pulls a stretched spring together and pushes a compressed one apart") {
+  const Body b1{BodyPose{Vec3::Zero(), Mat3::Identity()}, BodyVelocity{Vec3::Zero(), Vec3::Zero()}};
+  Body b2 = b1;
+  b2.pose.r = Vec3(2, 0, 0);
+  const mbrt::SpringDamper e{Vec3::Zero(), Vec3::Zero(), 10.0, 0.0, 1.0};
+  CHECK(max_abs(evaluate(e, b1, b2).f2 - Vec3(-10, 0, 0)) < 1e-14);
+  b2.pose.r = Vec3(0.5, 0, 0);
+  CHECK(max_abs(evaluate(e, b1, b2).f2 - Vec3(5, 0, 0)) < 1e-14);
+}
+
+TEST_CASE("coincident attachment points give zero force and no NaN") {
+  Random rnd(304);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Body b1 = random_body(rnd);
+    Body b2 = random_body(rnd);
+    const mbrt::SpringDamper e{rnd.vec3(0.5), rnd.vec3(0.5), rnd.uniform(1, 100), rnd.uniform(0.5, 5),
+                               rnd.uniform(0.2, 2)};
+    b2.pose.r = world_point(b1, e.s1) - b2.pose.R * e.s2;  // x2 == x1 (to round-off)
+    const auto out = evaluate(e, b1, b2);
+    CHECK(out.f2.allFinite());
+    CHECK(out.f2 == Vec3::Zero());
+    CHECK(std::isfinite(out.energy));
+    CHECK(out.energy == doctest::Approx(0.5 * e.stiffness * e.rest_length * e.rest_length).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("add_point_force: the torque is the world moment (R s) x f expressed in body axes, and accumulates") {
+  Random rnd(305);
+  for (int trial = 0; trial < 20; ++trial) {
+    const BodyPose pose{rnd.vec3(1.0), rnd.rotation()};
+    const Vec3 s = rnd.vec3(1.0), f = rnd.vec3(10.0);
+    const mbrt::Wrench initial{rnd.vec3(1.0), rnd.vec3(1.0)};
+    mbrt::Wrench w = initial;
+    mbrt::add_point_force(w, pose, s, f);
+    const Vec3 world_moment = (pose.R * s).cross(f);
+    CHECK(max_abs(w.f - (initial.f + f)) < 1e-14 * 10);
+    CHECK(max_abs(w.tau - (initial.tau + pose.R.transpose() * world_moment)) < 1e-13);
+
+    // A force at the COM adds no torque.
+    mbrt::Wrench at_com;
+    mbrt::add_point_force(at_com, pose, Vec3::Zero(), f);
+    CHECK(at_com.tau == Vec3::Zero());
+    CHECK(at_com.f == f);
+  }
+  // A default wrench is zero.
+  const mbrt::Wrench zero;
+  CHECK(zero.f == Vec3::Zero());
+  CHECK(zero.tau == Vec3::Zero());
+}
+
+TEST_CASE("axial_torque_world is value times the body-1 axis in world axes") {
+  Random rnd(306);
+  // Hand case: body 1 turned +90 degrees about z, axis along body x -> world y.
+  const BodyPose turned{Vec3::Zero(), Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()).toRotationMatrix()};
+  CHECK(max_abs(mbrt::axial_torque_world(mbrt::AxialTorque{Vec3::UnitX(), 3.0}, turned) - Vec3(0, 3, 0)) < 1e-15);
+  for (int trial = 0; trial < 10; ++trial) {
+    const BodyPose pose{rnd.vec3(1.0), rnd.rotation()};
+    const Vec3 world_axis = rnd.vec3(1.0).normalized();
+    const double value = rnd.uniform(-5, 5);
+    const Vec3 t = mbrt::axial_torque_world(mbrt::AxialTorque{pose.R.transpose() * world_axis, value}, pose);
+    CHECK(max_abs(t - value * world_axis) < 1e-14);
+  }
+}
+
+TEST_CASE("gyroscopic_torque: Euler's equations for principal axes, equals FullInertia, perpendicular to w") {
+  Random rnd(307);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Vec3 J(rnd.uniform(0.1, 3), rnd.uniform(0.1, 3), rnd.uniform(0.1, 3));
+    const Vec3 w = rnd.vec3(5.0);
+    const mbrt::PrincipalInertia principal{2.0, J};
+    const Mat3 Jm = J.asDiagonal();
+    const mbrt::FullInertia full{2.0, Jm, Jm.inverse()};
+    const Vec3 t = mbrt::gyroscopic_torque(principal, w);
+    // -w x (J w) for diagonal J, component-wise.
+    const Vec3 euler((J[1] - J[2]) * w[1] * w[2], (J[2] - J[0]) * w[2] * w[0], (J[0] - J[1]) * w[0] * w[1]);
+    CHECK(max_abs(t - euler) < 1e-13 * std::max(1.0, euler.norm()));
+    CHECK(max_abs(mbrt::gyroscopic_torque(full, w) - t) < 1e-13 * std::max(1.0, t.norm()));
+    CHECK(std::abs(t.dot(w)) < 1e-12 * std::max(1.0, t.norm() * w.norm()));
+
+    // A rotated inertia tensor: the torque transforms as a vector.
+    const Mat3 Q = rnd.rotation();
+    const Mat3 Jr = Q * Jm * Q.transpose();
+    const mbrt::FullInertia rotated{2.0, Jr, Jr.inverse()};
+    CHECK(max_abs(mbrt::gyroscopic_torque(rotated, Q * w) - Q * t) < 1e-12 * std::max(1.0, t.norm()));
+    // Spinning about a principal axis produces no torque.
+    CHECK(max_abs(mbrt::gyroscopic_torque(principal, Vec3(0, w[1], 0))) == 0.0);
+  }
+}
+
+TEST_CASE("inertia_times and inverse_inertia_times are inverse, for principal and full inertia") {
+  Random rnd(308);
+  const Vec3 J(1.0, 2.0, 3.0);
+  const Vec3 w = rnd.vec3(1.0);
+  const mbrt::PrincipalInertia principal{1.0, J};
+  CHECK(max_abs(mbrt::inertia_times(principal, w) - Vec3(w[0], 2 * w[1], 3 * w[2])) < 1e-15);
+  CHECK(max_abs(mbrt::inverse_inertia_times(principal, mbrt::inertia_times(principal, w)) - w) < 1e-15);
+  const Mat3 Q = rnd.rotation();
+  const Mat3 Jr = Q * J.asDiagonal() * Q.transpose();
+  const mbrt::FullInertia full{1.0, Jr, Jr.inverse()};
+  CHECK(max_abs(mbrt::inertia_times(full, w) - Jr * w) < 1e-15);
+  CHECK(max_abs(mbrt::inverse_inertia_times(full, mbrt::inertia_times(full, w)) - w) < 1e-14);
+}
+
+}  // namespace

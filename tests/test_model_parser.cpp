@@ -1,0 +1,865 @@
+// Model file parsing: a complete good model maps into the structs, and every
+// kind of bad file is rejected with a ModelError naming file, line, key and
+// what was expected.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "model.hpp"
+
+using namespace mbrt::codegen;
+
+namespace {
+
+bool contains(const std::string& text, const std::string& phrase) {
+  return text.find(phrase) != std::string::npos;
+}
+
+// The ModelError a model text produces; thrown == false if it parsed (or
+// threw something else, recorded in what).
+struct Failure {
+  bool thrown = false;
+  std::string what;
+  std::string key;
+  int line = 0;
+};
+
+Failure failure_of(const std::string& yaml) {
+  Failure f;
+  try {
+    parse_model(yaml, "model.yaml");
+    f.what = "(no exception)";
+  } catch (const ModelError& e) {
+    f = {true, e.what(), e.key(), e.where().line};
+  } catch (const std::exception& e) {
+    f.what = std::string("wrong exception type: ") + e.what();
+  }
+  return f;
+}
+
+}  // namespace
+
+// The model must be rejected with a ModelError whose what() holds the file
+// and 1-based line, the key path and a phrase of the expected-what.
+#define CHECK_MODEL_ERROR(yaml, expected_key, expected_line, phrase)                    \
+  do {                                                                                  \
+    const Failure f_ = failure_of(yaml);                                                \
+    INFO("what(): " << f_.what);                                                        \
+    REQUIRE(f_.thrown);                                                                 \
+    CHECK(f_.key == (expected_key));                                                    \
+    CHECK(f_.line == (expected_line));                                                  \
+    CHECK(contains(f_.what, "model.yaml:" + std::to_string(expected_line) + ":"));      \
+    CHECK(contains(f_.what, std::string(expected_key)));                                \
+    CHECK(contains(f_.what, phrase));                                                   \
+  } while (false)
+
+// ---- good models ------------------------------------------------------------
+
+const char* const kFullModel = R"(name: four_bar
+gravity: [0, -9.81, 0]
+bodies:
+  - name: crank
+    mass: 2.0
+    inertia: [0.1, 0.2, 0.3]
+    position: [0, 0.5, 0]
+    velocity: [0.5, 0, 0]
+    angular_velocity: [0, 0, -1]
+  - name: plate
+    mass: 3
+    particle: false
+    inertia: [2, 3, 4, 0.1, 0.2, 0.3]
+    orientation: [0, 1, 0, 0]
+  - name: bob
+    mass: 1.5
+    particle: true
+    position: [-1, 0, 0]
+    velocity: [0, 1, 0]
+  - name: free_body2
+    mass: 1
+    inertia: [1, 1, 1]
+joints:
+  - {name: pin_a, type: revolute, body1: ground, body2: crank, point: [0, 0, 0], axis: [0, 0, 2]}
+  - {name: ball, type: spherical, body1: crank, body2: plate, point: [1, 2, 3]}
+  - name: cardan
+    type: universal
+    body1: crank
+    body2: plate
+    point: [0, 1, 0]
+    axis1: [3, 0, 0]
+    axis2: [0, 0, -2]
+  - {name: sleeve, type: cylindrical, body1: ground, body2: plate, point: [0, 0, 1], axis: [1, 1, 0]}
+  - {name: rail, type: prismatic, body1: plate, body2: ground, point: [0, 0, 0], axis: [0, 3, 4]}
+  - {name: weld, type: fixed, body1: ground, body2: plate, point: [5, 6, 7]}
+  - {name: rod, type: distance, body1: crank, body2: bob, point1: [0, 1, 0], point2: [-1, 0, 0]}
+  - {name: rope, type: distance, body1: ground, body2: bob, point1: [0, 0, 0], point2: [-1, 0, 0], length: 2.5}
+forces:
+  - {type: spring_damper, body1: ground, body2: bob, point1: [0, 0, 0], point2: [0, 0, 1], stiffness: 4530, damping: 12, rest_length: 0.07785}
+  - {type: spring_damper, body1: crank, body2: plate, point1: [1, 0, 0], point2: [2, 0, 0], stiffness: 0, rest_length: 0}
+  - {type: torque, body1: ground, body2: crank, axis: [0, 0, 5], value: 0.033}
+  - {type: force, body: crank, point: [1, 1, 1], vector: [1, 0, 0]}
+  - {type: force, body: bob, vector: [0, -2, 0]}
+solver: {scheme: ali3p, step: 2.0e-3, euler_updates: 3, penalty: 1.0e-8, stabilization: 50}
+)";
+
+TEST_CASE("a model using every key, body, joint and force type parses into the structs") {
+  const Model m = parse_model(kFullModel, "model.yaml");
+  CHECK(m.name == "four_bar");
+  CHECK(m.file == "model.yaml");
+  REQUIRE(m.gravity.has_value());
+  CHECK(m.gravity->isApprox(Eigen::Vector3d(0, -9.81, 0)));
+
+  REQUIRE(m.bodies.size() == 4);
+  const Body& crank = m.bodies[0];
+  CHECK(crank.name == "crank");
+  CHECK(crank.where.file == "model.yaml");
+  CHECK(crank.where.line == 4);
+  CHECK(crank.mass == 2.0);
+  CHECK_FALSE(crank.particle);
+  CHECK(crank.inertia == Eigen::Vector3d(0.1, 0.2, 0.3).asDiagonal().toDenseMatrix());
+  CHECK(crank.position == Eigen::Vector3d(0, 0.5, 0));
+  CHECK(crank.orientation == Eigen::Vector4d(1, 0, 0, 0));  // default identity
+  CHECK(crank.velocity == Eigen::Vector3d(0.5, 0, 0));
+  CHECK(crank.angular_velocity == Eigen::Vector3d(0, 0, -1));
+
+  const Body& plate = m.bodies[1];
+  CHECK(plate.position == Eigen::Vector3d::Zero());  // default
+  CHECK(plate.orientation == Eigen::Vector4d(0, 1, 0, 0));
+  // Products of inertia are the matrix entries themselves, symmetric.
+  Eigen::Matrix3d j;
+  j << 2, 0.1, 0.2,
+       0.1, 3, 0.3,
+       0.2, 0.3, 4;
+  CHECK(plate.inertia == j);
+
+  const Body& bob = m.bodies[2];
+  CHECK(bob.particle);
+  CHECK(bob.mass == 1.5);
+  CHECK(bob.inertia == Eigen::Matrix3d::Zero());
+  CHECK(bob.orientation == Eigen::Vector4d(1, 0, 0, 0));
+  CHECK(bob.angular_velocity == Eigen::Vector3d::Zero());
+  CHECK(bob.position == Eigen::Vector3d(-1, 0, 0));
+  CHECK(bob.velocity == Eigen::Vector3d(0, 1, 0));
+  CHECK(m.bodies[3].name == "free_body2");
+
+  REQUIRE(m.joints.size() == 8);
+  const Joint& pin = m.joints[0];
+  CHECK(pin.name == "pin_a");
+  CHECK(pin.type == JointType::revolute);
+  CHECK(pin.body1 == kGround);
+  CHECK(pin.body2 == 0);
+  CHECK(pin.axis == Eigen::Vector3d(0, 0, 1));  // normalized
+  CHECK(pin.where.line == 24);
+  CHECK(m.joints[1].type == JointType::spherical);
+  CHECK(m.joints[1].body1 == 0);
+  CHECK(m.joints[1].body2 == 1);
+  CHECK(m.joints[1].point == Eigen::Vector3d(1, 2, 3));
+  const Joint& cardan = m.joints[2];
+  CHECK(cardan.type == JointType::universal);
+  CHECK(cardan.point == Eigen::Vector3d(0, 1, 0));
+  CHECK(cardan.axis1 == Eigen::Vector3d(1, 0, 0));
+  CHECK(cardan.axis2 == Eigen::Vector3d(0, 0, -1));
+  CHECK(m.joints[3].type == JointType::cylindrical);
+  CHECK(m.joints[3].axis.isApprox(Eigen::Vector3d(1, 1, 0) / std::sqrt(2.0)));
+  CHECK(m.joints[3].point == Eigen::Vector3d(0, 0, 1));
+  CHECK(m.joints[4].type == JointType::prismatic);
+  CHECK(m.joints[4].body1 == 1);
+  CHECK(m.joints[4].body2 == kGround);
+  CHECK(m.joints[4].axis.isApprox(Eigen::Vector3d(0, 0.6, 0.8)));
+  CHECK(m.joints[5].type == JointType::fixed);
+  CHECK(m.joints[5].point == Eigen::Vector3d(5, 6, 7));
+  const Joint& rod = m.joints[6];
+  CHECK(rod.type == JointType::distance);
+  CHECK(rod.point1 == Eigen::Vector3d(0, 1, 0));
+  CHECK(rod.point2 == Eigen::Vector3d(-1, 0, 0));
+  CHECK(rod.length == doctest::Approx(std::sqrt(2.0)));  // default |point2 - point1|
+  CHECK(m.joints[7].length == 2.5);
+
+  REQUIRE(m.forces.size() == 5);
+  const Force& spring = m.forces[0];
+  CHECK(spring.type == ForceType::spring_damper);
+  CHECK(spring.body1 == kGround);
+  CHECK(spring.body2 == 2);
+  CHECK(spring.point2 == Eigen::Vector3d(0, 0, 1));
+  CHECK(spring.stiffness == 4530);
+  CHECK(spring.damping == 12);
+  CHECK(spring.rest_length == 0.07785);
+  CHECK(m.forces[1].damping == 0);  // default
+  CHECK(m.forces[1].stiffness == 0);
+  const Force& torque = m.forces[2];
+  CHECK(torque.type == ForceType::torque);
+  CHECK(torque.body2 == 0);
+  CHECK(torque.axis == Eigen::Vector3d(0, 0, 1));
+  CHECK(torque.value == 0.033);
+  CHECK(m.forces[3].type == ForceType::force);
+  CHECK(m.forces[3].body == 0);
+  CHECK(m.forces[3].point == Eigen::Vector3d(1, 1, 1));
+  CHECK(m.forces[3].vector == Eigen::Vector3d(1, 0, 0));
+  CHECK(m.forces[4].body == 2);
+  CHECK(m.forces[4].point == Eigen::Vector3d(-1, 0, 0));  // default: the body's position
+  CHECK(m.forces[4].where.line == 43);
+
+  CHECK(m.solver.scheme == "ali3p");
+  CHECK(m.solver.step == 2.0e-3);
+  CHECK(m.solver.euler_updates == 3);
+  CHECK(m.solver.penalty == 1.0e-8);
+  CHECK(m.solver.stabilization == 50);
+}
+
+TEST_CASE("a minimal model keeps the defaults, and a free-floating body needs no joints") {
+  const Model m = parse_model(R"(name: tumbler
+bodies:
+  - {name: brick, mass: 1, inertia: [1, 2, 3], angular_velocity: [0.1, 5, 0]}
+joints:
+forces: []
+)",
+                              "model.yaml");
+  CHECK_FALSE(m.gravity.has_value());
+  CHECK(m.joints.empty());
+  CHECK(m.forces.empty());
+  const SolverSettings defaults;
+  CHECK(m.solver.scheme == defaults.scheme);
+  CHECK(m.solver.step == defaults.step);
+  CHECK(m.solver.euler_updates == defaults.euler_updates);
+  CHECK(m.solver.penalty == defaults.penalty);
+  CHECK(m.solver.stabilization == defaults.stabilization);
+  CHECK(m.bodies[0].angular_velocity == Eigen::Vector3d(0.1, 5, 0));
+}
+
+TEST_CASE("Euler parameters within 1e-6 of unit norm are accepted and renormalized") {
+  const Model m = parse_model(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1], orientation: [0.6, 0.8000004, 0, 0]}
+)",
+                              "model.yaml");
+  CHECK(m.bodies[0].orientation.norm() == doctest::Approx(1.0).epsilon(1e-15));
+}
+
+TEST_CASE("load_model reads a file and records its path") {
+  const std::string path = "test_model_parser_tmp.yaml";
+  {
+    std::ofstream out(path);
+    out << "name: m\nbodies:\n  - {name: a, mass: 1, particle: true}\n";
+  }
+  const Model m = load_model(path);
+  std::remove(path.c_str());
+  CHECK(m.file == path);
+  CHECK(m.bodies.size() == 1);
+}
+
+// ---- files that cannot be read ---------------------------------------------
+
+TEST_CASE("a missing model file is rejected naming the path") {
+  const std::string path = "no/such/dir/missing_model.yaml";
+  try {
+    load_model(path);
+    FAIL("expected ModelError");
+  } catch (const ModelError& e) {
+    CHECK(e.where().file == path);
+    CHECK(contains(e.what(), "cannot open the model file '" + path + "'"));
+    CHECK(contains(e.what(), "No such file"));
+  }
+}
+
+TEST_CASE("an empty file is rejected") {
+  CHECK_MODEL_ERROR("", "", 1, "the model file is empty");
+  CHECK_MODEL_ERROR("# only a comment\n\n", "", 1, "the model file is empty");
+}
+
+TEST_CASE("a top level that is not a map is rejected") {
+  CHECK_MODEL_ERROR("- name: m\n- bodies: []\n", "", 1, "expected a map with keys name, gravity");
+  CHECK_MODEL_ERROR("just words\n", "", 1, "got 'just words'");
+}
+
+TEST_CASE("malformed YAML is reported with its line, not as a raw yaml-cpp exception") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true
+gravity: [0, 0, 0]
+)",
+                    "", 4, "invalid YAML");
+  CHECK_MODEL_ERROR("name: m\nbodies: [1, 2\n", "", 3, "invalid YAML");
+}
+
+// ---- unknown and repeated keys ---------------------------------------------
+
+TEST_CASE("an unknown top-level key is rejected with its line") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+gravty: [0, 0, -9.81]
+)",
+                    "gravty", 4,
+                    "unknown key 'gravty' (expected one of: name, gravity, bodies, joints, forces, solver)");
+}
+
+TEST_CASE("an unknown key in a body is rejected with its line") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: crank
+    mass: 1
+    inertia: [1, 1, 1]
+  - name: bob
+    masss: 1
+    particle: true
+)",
+                    "bodies[1].masss", 7,
+                    "unknown key 'masss' (expected one of: name, mass, particle, inertia, position, "
+                    "orientation, velocity, angular_velocity)");
+}
+
+TEST_CASE("an unknown key in a joint is rejected with its line") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+joints:
+  - name: j
+    type: spherical
+    body1: ground
+    body2: a
+    piont: [0, 0, 0]
+)",
+                    "joints[0].piont", 9, "unknown key 'piont' (expected one of: name, type");
+}
+
+TEST_CASE("a key belonging to another joint type is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+joints:
+  - name: j
+    type: spherical
+    body1: ground
+    body2: a
+    point: [0, 0, 0]
+    axis: [0, 0, 1]
+)",
+                    "joints[0].axis", 10,
+                    "'axis' does not apply to a spherical joint (it takes: name, type, body1, body2, point)");
+}
+
+TEST_CASE("an unknown key in a force is rejected with its line") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+forces:
+  - {type: force, body: a, vector: [1, 0, 0]}
+  - {type: force, body: a, vektor: [1, 0, 0]}
+)",
+                    "forces[1].vektor", 6, "unknown key 'vektor'");
+}
+
+TEST_CASE("a key belonging to another force type is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+forces:
+  - {type: torque, body1: ground, body2: a, axis: [0, 0, 1], value: 1, point: [0, 0, 0]}
+)",
+                    "forces[0].point", 5, "'point' does not apply to a torque force");
+}
+
+TEST_CASE("an unknown key in the solver settings is rejected with its line") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver:
+  scheme: blajer
+  stepsize: 0.001
+)",
+                    "solver.stepsize", 6,
+                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization)");
+}
+
+TEST_CASE("a key given twice in one map is rejected naming the first") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: a
+    mass: 1
+    particle: true
+    mass: 2
+)",
+                    "bodies[0].mass", 6, "duplicate key 'mass' (first given at line 4)");
+}
+
+// ---- missing keys ----------------------------------------------------------
+
+TEST_CASE("a missing required key is reported at the map that lacks it") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+  - name: b
+    inertia: [1, 1, 1]
+)",
+                    "bodies[1].mass", 4, "missing required key 'mass'");
+  CHECK_MODEL_ERROR(R"(gravity: [0, 0, -1]
+name: m
+)",
+                    "bodies", 1, "missing required key 'bodies'");
+  CHECK_MODEL_ERROR(R"(bodies:
+  - {name: a, mass: 1, particle: true}
+)",
+                    "name", 1, "missing required key 'name'");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+forces:
+  - {type: spring_damper, body1: ground, body2: a, point1: [0, 0, 0], point2: [0, 0, 1], stiffness: 1}
+)",
+                    "forces[0].rest_length", 5, "missing required key 'rest_length'");
+}
+
+TEST_CASE("a rigid body without inertia is rejected, suggesting particle: true") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: a
+    mass: 1
+)",
+                    "bodies[0].inertia", 3, "set particle: true for a point mass");
+}
+
+TEST_CASE("a non-distance joint without a point is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - name: j
+    type: revolute
+    body1: ground
+    body2: a
+    axis: [0, 0, 1]
+)",
+                    "joints[0].point", 5, "missing required key 'point'");
+}
+
+// ---- wrong types -----------------------------------------------------------
+
+TEST_CASE("a string where a number belongs is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: a
+    mass: heavy
+    particle: true
+)",
+                    "bodies[0].mass", 4, "expected a number > 0, got 'heavy'");
+  // Quoted scalars are strings even if they look like numbers.
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: "1", particle: true}
+)",
+                    "bodies[0].mass", 3, "expected a number > 0, got the string \"1\"");
+}
+
+TEST_CASE("an empty value where a number belongs is rejected at its key") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: a
+    mass:
+    particle: true
+)",
+                    "bodies[0].mass", 4, "expected a number > 0, got an empty value");
+}
+
+TEST_CASE("an infinite number is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: .inf, particle: true}
+)",
+                    "bodies[0].mass", 3, "expected a finite number");
+}
+
+TEST_CASE("a scalar where a list belongs is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: a
+    mass: 1
+    particle: true
+    position: 5
+)",
+                    "bodies[0].position", 6, "expected a list of 3 numbers, got 5");
+}
+
+TEST_CASE("a list of the wrong length is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+gravity: [0, -9.81]
+bodies:
+  - {name: a, mass: 1, particle: true}
+)",
+                    "gravity", 2, "expected a list of 3 numbers, got a list of 2 items");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1, 0]}
+)",
+                    "bodies[0].inertia", 3, "expected a list of 3 or 6 numbers");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1], orientation: [1, 0, 0]}
+)",
+                    "bodies[0].orientation", 3, "expected a list of 4 numbers");
+}
+
+TEST_CASE("a non-number inside a list is rejected at the element") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: a
+    mass: 1
+    particle: true
+    velocity:
+      - 1
+      - fast
+      - 0
+)",
+                    "bodies[0].velocity[1]", 8, "expected a number, got 'fast'");
+}
+
+TEST_CASE("a non-bool particle flag is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: yes}
+)",
+                    "bodies[0].particle", 3, "expected true or false, got 'yes'");
+}
+
+TEST_CASE("a non-integer euler_updates is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver: {euler_updates: 2.5}
+)",
+                    "solver.euler_updates", 4, "expected an integer >= 1, got 2.5");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver: {euler_updates: 0}
+)",
+                    "solver.euler_updates", 4, "expected an integer >= 1, got 0");
+}
+
+TEST_CASE("bodies that are not a non-empty list are rejected") {
+  CHECK_MODEL_ERROR("name: m\nbodies: []\n", "bodies", 2, "expected a non-empty list of bodies");
+  CHECK_MODEL_ERROR("name: m\nbodies: {a: 1}\n", "bodies", 2, "expected a non-empty list of bodies, got a map");
+}
+
+TEST_CASE("joints that are not a list are rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+joints: pin
+)",
+                    "joints", 4, "expected a list of joints, got 'pin'");
+}
+
+// ---- names -----------------------------------------------------------------
+
+TEST_CASE("names not matching [a-z][a-z0-9_]* are rejected") {
+  CHECK_MODEL_ERROR(R"(name: 4bar
+bodies:
+  - {name: a, mass: 1, particle: true}
+)",
+                    "name", 1, "expected a name matching [a-z][a-z0-9_]*");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+  - {name: Crank-2, mass: 1, particle: true}
+)",
+                    "bodies[1].name", 4, "got 'Crank-2'");
+}
+
+TEST_CASE("a body may not use the reserved name ground") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: ground, mass: 1, particle: true}
+)",
+                    "bodies[0].name", 3, "'ground' is the reserved name");
+}
+
+TEST_CASE("a duplicate body name is rejected naming the first definition") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: bob
+    mass: 1
+    particle: true
+  - name: crank
+    mass: 1
+    inertia: [1, 1, 1]
+  - mass: 2
+    name: crank
+    inertia: [1, 1, 1]
+)",
+                    "bodies[2].name", 10, "duplicate body name 'crank' (first defined at line 6)");
+}
+
+TEST_CASE("a duplicate joint name is rejected naming the first definition") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+  - {name: b, mass: 1, particle: true}
+joints:
+  - {name: link, type: spherical, body1: ground, body2: a, point: [0, 0, 0]}
+  - {name: link, type: spherical, body1: a, body2: b, point: [0, 0, 0]}
+)",
+                    "joints[1].name", 7, "duplicate joint name 'link' (first defined at line 6)");
+}
+
+// ---- bodies ----------------------------------------------------------------
+
+TEST_CASE("zero or negative mass is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 0, particle: true}
+)",
+                    "bodies[0].mass", 3, "expected a number > 0, got 0");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: a
+    mass: -1
+    particle: true
+)",
+                    "bodies[0].mass", 4, "expected a number > 0, got -1");
+}
+
+TEST_CASE("an inertia that is not positive definite is rejected with its smallest eigenvalue") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: a
+    mass: 1
+    inertia: [1, 2, -0.5]
+)",
+                    "bodies[0].inertia", 5, "inertia is not positive definite (smallest eigenvalue -0.5)");
+  // Positive diagonal, but the products make it indefinite: eigenvalues -1, 1, 3.
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1, 2, 0, 0]}
+)",
+                    "bodies[0].inertia", 3, "smallest eigenvalue -1");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 0, 1]}
+)",
+                    "bodies[0].inertia", 3, "smallest eigenvalue 0");
+}
+
+TEST_CASE("Euler parameters that are not unit are rejected saying the norm") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: a
+    mass: 1
+    inertia: [1, 1, 1]
+    orientation: [1.2, 0, 0, 0]
+)",
+                    "bodies[0].orientation", 6, "Euler parameters must have unit norm (|p| = 1.2)");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1], orientation: [1.00001, 0, 0, 0]}
+)",
+                    "bodies[0].orientation", 3, "(|p| = 1.00001)");
+}
+
+TEST_CASE("a particle with rotational data is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: bob
+    mass: 1
+    particle: true
+    inertia: [1, 1, 1]
+)",
+                    "bodies[0].inertia", 6, "a particle must not have inertia");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: bob, mass: 1, particle: true, orientation: [1, 0, 0, 0]}
+)",
+                    "bodies[0].orientation", 3, "a particle must not have orientation");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: bob, mass: 1, particle: true, angular_velocity: [0, 0, 1]}
+)",
+                    "bodies[0].angular_velocity", 3, "a particle must not have angular_velocity");
+}
+
+// ---- joints ----------------------------------------------------------------
+
+TEST_CASE("a joint naming an unknown body is rejected listing the bodies") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: crank, mass: 1, inertia: [1, 1, 1]}
+  - {name: bob, mass: 1, particle: true}
+joints:
+  - name: j
+    type: spherical
+    body1: crnk
+    body2: bob
+    point: [0, 0, 0]
+)",
+                    "joints[0].body1", 8, "unknown body 'crnk' (bodies: ground, crank, bob)");
+}
+
+TEST_CASE("a joint connecting a body to itself is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - {name: j, type: fixed, body1: a, body2: a, point: [0, 0, 0]}
+)",
+                    "joints[0].body2", 5, "a joint must connect two different bodies");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - name: j
+    type: fixed
+    body1: ground
+    body2: ground
+    point: [0, 0, 0]
+)",
+                    "joints[0].body2", 8, "a joint must connect two different bodies (both are 'ground')");
+}
+
+TEST_CASE("an unknown joint type is rejected listing the types") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - name: j
+    type: hinge
+    body1: ground
+    body2: a
+)",
+                    "joints[0].type", 6,
+                    "expected one of: spherical, revolute, universal, cylindrical, prismatic, fixed, "
+                    "distance, got 'hinge'");
+}
+
+TEST_CASE("a zero-length axis is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - name: j
+    type: prismatic
+    body1: ground
+    body2: a
+    point: [0, 0, 0]
+    axis: [0, 0, 0]
+)",
+                    "joints[0].axis", 10, "zero-length axis");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1]}
+forces:
+  - {type: torque, body1: ground, body2: a, axis: [0, 0, 0], value: 1}
+)",
+                    "forces[0].axis", 5, "zero-length axis");
+}
+
+TEST_CASE("universal joint axes that are not perpendicular are rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - name: u
+    type: universal
+    body1: ground
+    body2: a
+    point: [0, 0, 0]
+    axis1: [1, 0, 0]
+    axis2: [1, 1, 0]
+)",
+                    "joints[0].axis2", 11, "must be perpendicular");
+}
+
+TEST_CASE("a distance joint between coincident points without a length is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+joints:
+  - name: rod
+    type: distance
+    body1: ground
+    body2: a
+    point1: [1, 2, 3]
+    point2: [1, 2, 3]
+)",
+                    "joints[0].point2", 10, "zero-length distance");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+joints:
+  - {name: rod, type: distance, body1: ground, body2: a, point1: [0, 0, 0], point2: [1, 0, 0], length: 0}
+)",
+                    "joints[0].length", 5, "expected a number > 0, got 0");
+}
+
+// ---- forces ----------------------------------------------------------------
+
+TEST_CASE("an unknown force type is rejected listing the types") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+forces:
+  - {type: gravity, body: a}
+)",
+                    "forces[0].type", 5, "expected one of: spring_damper, torque, force, got 'gravity'");
+}
+
+TEST_CASE("a negative spring stiffness is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+forces:
+  - type: spring_damper
+    body1: ground
+    body2: a
+    point1: [0, 0, 0]
+    point2: [0, 0, 1]
+    stiffness: -10
+    rest_length: 1
+)",
+                    "forces[0].stiffness", 10, "expected a number >= 0, got -10");
+}
+
+TEST_CASE("a force on ground or a spring from a body to itself is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+forces:
+  - {type: force, body: ground, vector: [1, 0, 0]}
+)",
+                    "forces[0].body", 5, "a force must act on a body, not on ground");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+forces:
+  - {type: spring_damper, body1: a, body2: a, point1: [0, 0, 0], point2: [0, 0, 1], stiffness: 1, rest_length: 1}
+)",
+                    "forces[0].body2", 5, "must connect two different bodies");
+}
+
+// ---- solver ----------------------------------------------------------------
+
+TEST_CASE("an unknown solver scheme is rejected listing the schemes") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver:
+  scheme: rk4
+)",
+                    "solver.scheme", 5,
+                    "expected one of: staggered-pcst, staggered-nps, ali3p, blajer, baumgarte, got 'rk4'");
+}
+
+TEST_CASE("a non-positive step and a negative penalty are rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver: {step: 0}
+)",
+                    "solver.step", 4, "expected a number > 0, got 0");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver: {penalty: -1e-9}
+)",
+                    "solver.penalty", 4, "expected a number >= 0, got -1e-9");
+}
