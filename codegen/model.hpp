@@ -89,7 +89,7 @@ struct SolverSettings {
   // staggered-pcst: regularization of S relative to its largest diagonal
   // entry at t = 0, and the decay rate of position violations (1/s; 0 picks
   // the default from the step, see docs/staggered-pcst.md).
-  double penalty = 1.0e-9;
+  double penalty = 1.0e-10;
   double stabilization = 0.0;
 };
 

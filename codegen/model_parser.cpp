@@ -29,12 +29,12 @@ using Keys = std::vector<std::string>;
 const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "solver"};
 const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
                         "orientation", "velocity", "angular_velocity"};
-const Keys kParticleOnlyForbidden = {"inertia", "orientation", "angular_velocity"};
+const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
+// Keys of every joint / force type; each type then takes a subset.
 const Keys kJointKeys = {"name", "type", "body1", "body2", "point", "axis",
                          "axis1", "axis2", "point1", "point2", "length"};
-const Keys kForceKeys = {"type",      "body1",   "body2",       "point1", "point2", "stiffness",
-                         "damping",   "rest_length", "axis",    "value",  "body",   "point",
-                         "vector"};
+const Keys kForceKeys = {"type", "body1", "body2", "point1", "point2", "stiffness", "damping",
+                         "rest_length", "axis", "value", "body", "point", "vector"};
 const Keys kSolverKeys = {"scheme", "step", "euler_updates", "penalty", "stabilization"};
 
 const std::vector<std::pair<std::string, JointType>> kJointTypes = {
@@ -84,13 +84,20 @@ bool decodes_as_number(const YAML::Node& node) {
   return node.IsScalar() && !is_quoted(node) && YAML::convert<double>::decode(node, x);
 }
 
+// A scalar as echoed in messages: long ones (an indentation slip can swallow
+// half the file into one scalar) are cut short.
+std::string excerpt(const std::string& s) {
+  constexpr std::size_t kMax = 40;
+  return s.size() <= kMax ? s : s.substr(0, kMax) + "...";
+}
+
 // What the user wrote, for "expected ..., got <describe>".
 std::string describe(const YAML::Node& node) {
   switch (node.Type()) {
     case YAML::NodeType::Scalar:
-      if (is_quoted(node)) return "the string \"" + node.Scalar() + "\"";
+      if (is_quoted(node)) return "the string \"" + excerpt(node.Scalar()) + "\"";
       if (decodes_as_number(node)) return node.Scalar();
-      return "'" + node.Scalar() + "'";
+      return "'" + excerpt(node.Scalar()) + "'";
     case YAML::NodeType::Sequence:
       return "a list of " + std::to_string(node.size()) + (node.size() == 1 ? " item" : " items");
     case YAML::NodeType::Map:
@@ -139,7 +146,8 @@ class Section {
       const SourceLocation key_where = location(file(), key_mark);
       if (!contains(allowed, name)) {
         throw ModelError(key_where, path(name),
-                         "unknown key '" + name + "' (expected one of: " + join(allowed) + ")");
+                         "unknown key '" + excerpt(name) + "' (expected one of: " +
+                             join(allowed) + ")");
       }
       if (const Entry* first = lookup(name)) {
         throw ModelError(key_where, path(name),
@@ -253,7 +261,7 @@ std::string read_string(const Value& v, const std::string& expected = "a name") 
   return v.node.Scalar();
 }
 
-// Model and body names become C++ identifiers in generated code.
+// Model, body and joint names become C++ identifiers in generated code.
 std::string read_identifier(const Value& v) {
   const std::string expected =
       "a name matching [a-z][a-z0-9_]* (a lowercase letter, then lowercase letters, digits or _)";
@@ -263,6 +271,15 @@ std::string read_identifier(const Value& v) {
                     return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
                   });
   if (!ok) fail_expected(v, expected);
+  static const Keys cpp_keywords = {
+      "alignas", "alignof", "and", "asm", "auto", "bool", "break", "case", "catch", "char", "class", "const",
+      "constexpr", "continue", "decltype", "default", "delete", "do", "double", "else", "enum", "explicit",
+      "export", "extern", "false", "float", "for", "friend", "goto", "if", "inline", "int", "long", "mutable",
+      "namespace", "new", "noexcept", "not", "nullptr", "operator", "or", "private", "protected", "public",
+      "register", "return", "short", "signed", "sizeof", "static", "struct", "switch", "template", "this",
+      "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using", "virtual", "void",
+      "volatile", "while", "xor"};
+  if (contains(cpp_keywords, s)) fail_expected(v, "a name that is not a C++ keyword, got '" + s + "'");
   return s;
 }
 
@@ -364,7 +381,7 @@ int read_body_ref(const Value& v, const Model& model) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (model.bodies[i].name == s) return static_cast<int>(i);
   }
-  fail(v, "unknown body '" + s + "' (bodies: " + join(names) + ")");
+  fail(v, "unknown body '" + excerpt(s) + "' (bodies: " + join(names) + ")");
 }
 
 // An optional list (joints, forces): an empty value means none.
@@ -388,7 +405,7 @@ Body parse_body(const Value& item, std::map<std::string, int>& names_seen) {
   if (auto v = s.find("particle")) b.particle = read_bool(*v);
   if (b.particle) {
     // A particle has no rotational state, so rotational data is a mistake.
-    for (const auto& key : kParticleOnlyForbidden) {
+    for (const auto& key : kRotationalKeys) {
       if (auto v = s.find(key)) {
         fail(*v, "a particle must not have " + key + " (remove it, or set particle: false)");
       }
@@ -405,7 +422,7 @@ Body parse_body(const Value& item, std::map<std::string, int>& names_seen) {
   return b;
 }
 
-// The keys each joint type takes, besides name, type, body1, body2.
+// The keys a joint of this type takes.
 Keys joint_keys(JointType type) {
   Keys keys = {"name", "type", "body1", "body2"};
   switch (type) {
@@ -425,7 +442,7 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   Joint j;
   j.where = item.where;
   const Value name = s.get("name");
-  j.name = read_string(name);
+  j.name = read_identifier(name);
   check_unique(name, j.name, "joint", names_seen);
   const Value type = s.get("type");
   j.type = read_type(type, kJointTypes);
@@ -481,6 +498,7 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   return j;
 }
 
+// The keys a force of this type takes.
 Keys force_keys(ForceType type) {
   switch (type) {
     case ForceType::spring_damper:
@@ -605,7 +623,8 @@ Model parse_model(const std::string& yaml_text, const std::string& file_name) {
 Model load_model(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
-    throw ModelError({path, 0, 0}, "", "cannot read the model file '" + path + "': it is a directory");
+    throw ModelError({path, 0, 0}, "",
+                     "cannot read the model file '" + path + "': it is a directory");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -238,7 +239,8 @@ bodies:
 }
 
 TEST_CASE("load_model reads a file and records its path") {
-  const std::string path = "test_model_parser_tmp.yaml";
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "mbrt_test_model_parser.yaml").string();
   {
     std::ofstream out(path);
     out << "name: m\nbodies:\n  - {name: a, mass: 1, particle: true}\n";

@@ -41,13 +41,14 @@ inline EulerParameters cayley_increment(const Vec3& theta) noexcept {
 
 // Advances p by body-frame angular velocity w held constant over h, using
 // `updates` Cayley sub-steps of h / updates each. More sub-steps approach the
-// exact exponential map; the count is fixed at generation time.
+// exact exponential map; the count is fixed at generation time. The map is
+// orthogonal; the final rescaling only keeps round-off from accumulating.
 inline EulerParameters advance_euler_parameters(const EulerParameters& p, const Vec3& w, double h,
                                                 int updates) noexcept {
   const EulerParameters c = cayley_increment((h / updates) * w);
   EulerParameters q = p;
   for (int k = 0; k < updates; ++k) q = quaternion_product(q, c);
-  return q;
+  return q / q.norm();
 }
 
 }  // namespace mbrt
