@@ -1,0 +1,150 @@
+// The mbrt command line as a user runs it: generate, compile, simulate,
+// CSV and JSON outputs, the compile cache, and its errors.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int exit_code;
+  std::string out;
+  std::string err;
+};
+
+// Runs `mbrt ARGS` with a private compile cache.
+Run mbrt(const std::string& args) {
+  const fs::path dir = fs::path(MBRT_TEST_WORK_DIR);
+  fs::create_directories(dir);
+  const std::string err_file = (dir / "stderr.txt").string();
+  const std::string cmd = "MBRT_CACHE_DIR='" + (dir / "cache").string() + "' '" + MBRT_EXE + "' " + args + " 2>'" +
+                          err_file + "'";
+  Run r{0, "", ""};
+  FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p != nullptr);
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream s;
+  s << e.rdbuf();
+  r.err = s.str();
+  return r;
+}
+
+std::string model(const std::string& name) { return std::string("'") + MBRT_TEST_MODELS + "/" + name + "'"; }
+
+std::string last_line(const std::string& text) {
+  std::string t = text;
+  while (!t.empty() && t.back() == '\n') t.pop_back();
+  const size_t nl = t.rfind('\n');
+  return nl == std::string::npos ? t : t.substr(nl + 1);
+}
+
+std::vector<std::string> lines(const fs::path& file) {
+  std::ifstream in(file);
+  std::vector<std::string> out;
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// Value of a numeric field of the summary JSON (flat object, no nesting).
+double json_number(const std::string& json, const std::string& key) {
+  const size_t at = json.find("\"" + key + "\": ");
+  REQUIRE(at != std::string::npos);
+  return std::stod(json.substr(at + key.size() + 4));
+}
+
+}  // namespace
+
+TEST_CASE("mbrt sim writes the CSV trajectory and ends with a JSON summary") {
+  const fs::path csv = fs::path(MBRT_TEST_WORK_DIR) / "a01.csv";
+  const Run r = mbrt("sim " + model("a01_pendulum.yaml") + " --t-end 1 --every 100 --velocities --out '" +
+                     csv.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string json = last_line(r.out);
+  for (const char* key : {"model", "scheme", "h", "steps", "wall_s", "ns_per_step", "max_position_violation",
+                          "max_velocity_violation", "max_quat_norm_error", "energy_initial", "energy_final",
+                          "status"}) {
+    CHECK(json.find(std::string("\"") + key + "\"") != std::string::npos);
+  }
+  CHECK(json.find("\"model\": \"a01_pendulum\"") != std::string::npos);
+  CHECK(json.find("\"status\": \"ok\"") != std::string::npos);
+  CHECK(json_number(json, "steps") == 2000);  // t_end / h with h = 5e-4 from the model file
+  CHECK(json_number(json, "h") == 5e-4);
+  const std::vector<std::string> rows = lines(csv);
+  REQUIRE(rows.size() == 1 + 21);  // header, t = 0 and every 100 steps
+  CHECK(rows[0] == "t,bob.x,bob.y,bob.z,bob.vx,bob.vy,bob.vz");
+  CHECK(rows[1].rfind("0,-1,0,0,0,0,0", 0) == 0);
+}
+
+TEST_CASE("mbrt sim names Euler parameters and body-axis angular velocities of rigid bodies; --h overrides") {
+  const fs::path csv = fs::path(MBRT_TEST_WORK_DIR) / "top.csv";
+  const Run r =
+      mbrt("sim " + model("heavy_top.yaml") + " --h 2e-4 --t-end 0.01 --velocities --out '" + csv.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(json_number(last_line(r.out), "h") == 2e-4);
+  CHECK(json_number(last_line(r.out), "steps") == 50);
+  CHECK(lines(csv)[0] == "t,top.x,top.y,top.z,top.e0,top.e1,top.e2,top.e3,top.vx,top.vy,top.vz,top.wx,top.wy,top.wz");
+}
+
+TEST_CASE("a second mbrt sim of the same model reuses the compiled step") {
+  const Run first = mbrt("sim " + model("free_body.yaml") + " --t-end 0.01");
+  REQUIRE(first.exit_code == 0);
+  const Run second = mbrt("sim " + model("free_body.yaml") + " --t-end 0.02");
+  REQUIRE(second.exit_code == 0);
+  CHECK(second.err.find("compiling") == std::string::npos);
+  CHECK(json_number(last_line(second.out), "steps") == 20);
+}
+
+TEST_CASE("mbrt gen writes the model's header and source") {
+  const fs::path dir = fs::path(MBRT_TEST_WORK_DIR) / "gen";
+  const Run r = mbrt("gen " + model("four_bar.yaml") + " -o '" + dir.string() + "'");
+  REQUIRE(r.exit_code == 0);
+  CHECK(fs::exists(dir / "four_bar.hpp"));
+  CHECK(fs::exists(dir / "four_bar.cpp"));
+}
+
+TEST_CASE("a bad model file is reported with file, line and key, and nothing is generated") {
+  const fs::path dir = fs::path(MBRT_TEST_WORK_DIR) / "bad";
+  const Run r = mbrt("gen " + model("bad/unknown_body.yaml") + " -o '" + dir.string() + "'");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("unknown_body.yaml:10:") != std::string::npos);
+  CHECK(r.err.find("joints[0].body2") != std::string::npos);
+  CHECK(r.err.find("crnk") != std::string::npos);
+  CHECK(!fs::exists(dir / "unknown_body.cpp"));
+}
+
+TEST_CASE("inconsistent initial velocities name the worst joint; --project-initial repairs them") {
+  const Run bad = mbrt("sim " + model("bad/inconsistent_velocity.yaml") + " --t-end 0.01");
+  CHECK(bad.exit_code == 1);
+  CHECK(bad.err.find("joint 'rod'") != std::string::npos);
+  CHECK(bad.err.find("--project-initial") != std::string::npos);
+  CHECK(bad.err.find("0.3") != std::string::npos);  // the residual: velocity along the bar
+
+  const Run fixed = mbrt("sim " + model("bad/inconsistent_velocity.yaml") + " --t-end 0.01 --project-initial");
+  INFO(fixed.err);
+  REQUIRE(fixed.exit_code == 0);
+  CHECK(json_number(last_line(fixed.out), "max_velocity_violation") < 1e-9);
+}
+
+TEST_CASE("bad command lines get a usage message and exit code 2") {
+  CHECK(mbrt("").exit_code == 2);
+  CHECK(mbrt("fly " + model("a01_pendulum.yaml")).exit_code == 2);
+  const Run r = mbrt("sim " + model("a01_pendulum.yaml") + " --h fast");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--h: expected a number") != std::string::npos);
+  CHECK(mbrt("sim " + model("a01_pendulum.yaml") + " --warp 9").exit_code == 2);
+  CHECK(mbrt("sim '/nonexistent/model.yaml'").err.find("/nonexistent/model.yaml") != std::string::npos);
+}
