@@ -1,0 +1,121 @@
+// The generator's analysis: body frames, row counts, the fixed block pattern
+// of S = B M^-1 B^T and its fill-reducing elimination order, and what the
+// scene lets the step leave out.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "analysis.hpp"
+
+using namespace mbrt::codegen;
+
+namespace {
+
+// A chain of n rods hanging from ground, optionally closed by a joint from
+// the last link back to the first (a loop of moving bodies; a loop through
+// ground couples nothing, since ground has no velocity).
+Model chain(int n, bool closed) {
+  std::string y = "name: chain\ngravity: [0, -9.81, 0]\nbodies:\n";
+  for (int i = 0; i < n; ++i) {
+    y += "  - {name: link" + std::to_string(i) + ", mass: 1, inertia: [0.001, 0.08, 0.08], position: [" +
+         std::to_string(i + 0.5) + ", 0, 0]}\n";
+  }
+  y += "joints:\n";
+  for (int i = 0; i < n; ++i) {
+    y += "  - {name: pin" + std::to_string(i) + ", type: revolute, body1: " +
+         (i == 0 ? std::string("ground") : "link" + std::to_string(i - 1)) + ", body2: link" + std::to_string(i) +
+         ", point: [" + std::to_string(i) + ", 0, 0], axis: [0, 0, 1]}\n";
+  }
+  if (closed) {
+    y += "  - {name: close, type: spherical, body1: link" + std::to_string(n - 1) + ", body2: link0, point: [" +
+         std::to_string(n) + ", 0, 0]}\n";
+  }
+  return parse_model(y, "chain.yaml");
+}
+
+bool is_permutation_of_joints(const std::vector<int>& order, size_t n) {
+  std::set<int> s(order.begin(), order.end());
+  return order.size() == n && s.size() == n && *s.begin() == 0 && *s.rbegin() == static_cast<int>(n) - 1;
+}
+
+}  // namespace
+
+TEST_CASE("an open chain couples neighbouring joints only and factorizes without fill") {
+  const Analysis a = analyse(chain(8, false));
+  CHECK(a.constraint_rows == 8 * 5);
+  REQUIRE(is_permutation_of_joints(a.pattern.order, 8));
+  CHECK(a.pattern.fill_blocks == 0);
+  for (size_t j = 0; j < 8; ++j) {
+    const auto& c = a.pattern.coupled[j];
+    CHECK(c.size() == (j == 0 || j == 7 ? 1u : 2u));  // the joints before and after
+  }
+}
+
+TEST_CASE("a closed loop needs fill blocks, and each lower block refers to a later joint") {
+  const Analysis a = analyse(chain(6, true));
+  REQUIRE(is_permutation_of_joints(a.pattern.order, 7));
+  CHECK(a.pattern.fill_blocks > 0);
+  std::vector<int> position(7);
+  for (size_t p = 0; p < 7; ++p) position[static_cast<size_t>(a.pattern.order[p])] = static_cast<int>(p);
+  for (int k = 0; k < 7; ++k) {
+    for (int i : a.pattern.lower[static_cast<size_t>(k)]) CHECK(position[static_cast<size_t>(i)] > position[static_cast<size_t>(k)]);
+  }
+  // A loop of 7 joints eliminated in any order leaves at most 2 blocks per column.
+  for (const auto& col : a.pattern.lower) CHECK(col.size() <= 2);
+}
+
+TEST_CASE("joint frames put both joint points on the world point and keep triads orthonormal") {
+  const Model m = parse_model(R"(
+name: tilted
+bodies:
+  - {name: a, mass: 1, inertia: [1, 2, 3], position: [1, 2, 3], orientation: [0.5, 0.5, 0.5, 0.5]}
+  - {name: b, mass: 1, inertia: [1, 2, 3], position: [2, 2, 3], orientation: [0.8, 0.6, 0, 0]}
+joints:
+  - {name: hinge, type: revolute, body1: a, body2: b, point: [1.5, 2.5, 3], axis: [1, 1, 0]}
+)",
+                              "tilted.yaml");
+  const Analysis an = analyse(m);
+  const mbrt::JointFrame& f = an.joints[0].frame;
+  const Eigen::Matrix3d R1 = mbrt::rotation_matrix(m.bodies[0].orientation);
+  const Eigen::Matrix3d R2 = mbrt::rotation_matrix(m.bodies[1].orientation);
+  const Eigen::Vector3d point(1.5, 2.5, 3);
+  CHECK((m.bodies[0].position + R1 * f.s1 - point).norm() < 1e-14);
+  CHECK((m.bodies[1].position + R2 * f.s2 - point).norm() < 1e-14);
+  CHECK((R1 * f.a1 - Eigen::Vector3d(1, 1, 0).normalized()).norm() < 1e-14);
+  CHECK((R2 * f.b2 - R1 * f.b1).norm() < 1e-14);  // the same world triad in both bodies at t = 0
+  CHECK((R2 * f.c2 - R1 * f.c1).norm() < 1e-14);
+  CHECK(std::abs(f.a1.dot(f.b1)) < 1e-14);
+  CHECK(std::abs(f.b1.dot(f.c1)) < 1e-14);
+  CHECK((f.a1.cross(f.b1) - f.c1).norm() < 1e-14);  // right-handed
+}
+
+TEST_CASE("the analysis records what the scene does not need") {
+  const Model m = parse_model(R"(
+name: bare
+bodies:
+  - {name: bob, mass: 1, particle: true}
+  - {name: ball, mass: 1, inertia: [2, 2, 2], position: [1, 0, 0]}
+)",
+                              "bare.yaml");
+  const Analysis a = analyse(m);
+  CHECK(!a.gravity);
+  CHECK(a.particle_count == 1);
+  CHECK(a.rigid_count == 1);
+  CHECK(a.bodies[1].principal_axes);
+  CHECK(a.bodies[1].isotropic);
+  CHECK(!a.velocity_dependent_forces);  // isotropic ball: no gyroscopic torque, one stage
+}
+
+TEST_CASE("joints and torques that need orientation are refused on particles") {
+  const std::string base = "name: p\nbodies:\n  - {name: bob, mass: 1, particle: true}\n";
+  CHECK_THROWS_WITH_AS(
+      analyse(parse_model(base + "joints:\n  - {name: h, type: revolute, body1: ground, body2: bob, point: [0, 0, 0], "
+                                 "axis: [0, 0, 1]}\n",
+                          "p.yaml")),
+      doctest::Contains("'bob' is a particle"), ModelError);
+  CHECK_THROWS_WITH_AS(
+      analyse(parse_model(base + "joints:\n  - {name: s, type: spherical, body1: ground, body2: bob, point: [1, 0, 0]}\n",
+                          "p.yaml")),
+      doctest::Contains("must be its position"), ModelError);
+}
