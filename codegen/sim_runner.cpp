@@ -49,13 +49,21 @@ fs::path cache_root(const SimOptions& o) {
   return fs::temp_directory_path() / "mbrt-cache";
 }
 
+std::string compile_flags() {
+  std::string flags = toolchain::kFlags;
+#if defined(__x86_64__)
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) flags += std::string(" ") + toolchain::kVectorFlags;
+#endif
+  return flags;
+}
+
 // Everything the executable depends on: generated code, driver, runtime
 // headers and the compile command.
 std::string content_key(const GeneratedCode& code) {
   std::uint64_t h = fnv1a(code.header);
   h = fnv1a(code.source, h);
   h = fnv1a(read_file(toolchain::kDriverSource), h);
-  h = fnv1a(std::string(toolchain::kCompiler) + toolchain::kFlags, h);
+  h = fnv1a(std::string(toolchain::kCompiler) + compile_flags(), h);
   for (const auto& e : fs::directory_iterator(fs::path(toolchain::kRuntimeInclude) / "mbrt")) {
     h = fnv1a(e.path().filename().string() + read_file(e.path()), h);
   }
@@ -75,7 +83,7 @@ std::string build_simulator(const Generated& g, const SimOptions& options) {
   const fs::path tmp = dir.string() + ".tmp" + std::to_string(::getpid());
   fs::create_directories(tmp);
   write_generated(g.code, tmp.string());
-  const std::string cmd = std::string(toolchain::kCompiler) + " " + toolchain::kFlags + " -I" +
+  const std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags() + " -I" +
                           quote(tmp.string()) + " -I" + quote(toolchain::kRuntimeInclude) + " -I" +
                           quote(toolchain::kEigenInclude) + " -DMBRT_MODEL_HEADER='\"" + g.code.header_name +
                           "\"' -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name + " " +
