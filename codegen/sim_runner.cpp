@@ -49,6 +49,23 @@ fs::path cache_root(const SimOptions& o) {
   return fs::temp_directory_path() / "mbrt-cache";
 }
 
+// Runtime headers and driver: the installed layout next to this executable
+// (<prefix>/bin/mbrt, <prefix>/include, <prefix>/share/mbrt) when present,
+// else the source tree it was built from.
+struct Sources {
+  fs::path include;
+  fs::path driver;
+};
+
+Sources sources() {
+  std::error_code ec;
+  const fs::path prefix = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path();
+  if (!ec && fs::exists(prefix / "share" / "mbrt" / "sim_driver.cpp") && fs::exists(prefix / "include" / "mbrt")) {
+    return {prefix / "include", prefix / "share" / "mbrt" / "sim_driver.cpp"};
+  }
+  return {toolchain::kRuntimeInclude, toolchain::kDriverSource};
+}
+
 std::string compile_flags() {
   std::string flags = toolchain::kFlags;
 #if defined(__x86_64__)
@@ -62,9 +79,9 @@ std::string compile_flags() {
 std::string content_key(const GeneratedCode& code) {
   std::uint64_t h = fnv1a(code.header);
   h = fnv1a(code.source, h);
-  h = fnv1a(read_file(toolchain::kDriverSource), h);
+  h = fnv1a(read_file(sources().driver), h);
   h = fnv1a(std::string(toolchain::kCompiler) + compile_flags(), h);
-  for (const auto& e : fs::directory_iterator(fs::path(toolchain::kRuntimeInclude) / "mbrt")) {
+  for (const auto& e : fs::directory_iterator(sources().include / "mbrt")) {
     h = fnv1a(e.path().filename().string() + read_file(e.path()), h);
   }
   char buf[17];
@@ -83,11 +100,12 @@ std::string build_simulator(const Generated& g, const SimOptions& options) {
   const fs::path tmp = dir.string() + ".tmp" + std::to_string(::getpid());
   fs::create_directories(tmp);
   write_generated(g.code, tmp.string());
+  const Sources src = sources();
   const std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags() + " -I" +
-                          quote(tmp.string()) + " -I" + quote(toolchain::kRuntimeInclude) + " -I" +
+                          quote(tmp.string()) + " -I" + quote(src.include.string()) + " -I" +
                           quote(toolchain::kEigenInclude) + " -DMBRT_MODEL_HEADER='\"" + g.code.header_name +
                           "\"' -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name + " " +
-                          quote((tmp / g.code.source_name).string()) + " " + quote(toolchain::kDriverSource) +
+                          quote((tmp / g.code.source_name).string()) + " " + quote(src.driver.string()) +
                           " -o " + quote((tmp / "sim").string()) + " 2> " + quote((tmp / "compile.log").string());
   if (options.verbose) std::fprintf(stderr, "compiling: %s\n", cmd.c_str());
   else std::fprintf(stderr, "compiling %s (cached in %s)\n", g.model.name.c_str(), dir.string().c_str());
