@@ -209,9 +209,11 @@ Analysis analyse(const Model& model) {
   }
   a.pattern = factor_pattern(coupling(model));
 
-  // staggered-pcst parameters (docs/staggered-pcst.md).
+  // Scheme parameters (docs/staggered-pcst.md, docs/schemes.md).
   const double h = model.solver.step;
   a.stabilization = model.solver.stabilization > 0.0 ? model.solver.stabilization : 1.0 / h;
+  a.baumgarte_alpha = model.solver.baumgarte_alpha > 0.0 ? model.solver.baumgarte_alpha : 0.1 / h;
+  a.baumgarte_beta = model.solver.baumgarte_beta > 0.0 ? model.solver.baumgarte_beta : 0.1 / h;
   if (a.constraint_rows > 0) {
     const StackedConstraints c = evaluate_constraints(model, a.joints);
     const Eigen::MatrixXd S = c.B * inverse_mass_matrix(model) * c.B.transpose();

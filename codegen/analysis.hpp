@@ -56,7 +56,9 @@ struct Analysis {
   bool gravity = false;
   bool velocity_dependent_forces = false;  // gyroscopic or damping terms: two stages per step
   double regularization = 0.0;             // added to the diagonal of S
-  double stabilization = 0.0;              // alpha, 1/s
+  double stabilization = 0.0;              // staggered-pcst alpha, 1/s
+  double baumgarte_alpha = 0.0;            // baumgarte, 1/s
+  double baumgarte_beta = 0.0;             // baumgarte, 1/s
   std::vector<std::string> skipped;        // what the scene does not need, for reports
 };
 

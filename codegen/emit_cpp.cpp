@@ -56,7 +56,13 @@ class Emitter {
   const Model& m_;
   const Analysis& a_;
 
-  int stages() const { return a_.velocity_dependent_forces ? 2 : 1; }
+  // Implicit passes per step: two when the end-of-step accelerations depend on
+  // the end-of-step velocities (gyroscopic or damping loads, Baumgarte's
+  // velocity term), else one.
+  int stages() const {
+    const bool baumgarte = m_.solver.scheme == "baumgarte" && a_.constraint_rows > 0;
+    return a_.velocity_dependent_forces || baumgarte ? 2 : 1;
+  }
   const Body& body(int i) const { return m_.bodies[static_cast<size_t>(i)]; }
   const BodyPlan& plan(int i) const { return a_.bodies[static_cast<size_t>(i)]; }
   const Joint& joint(int j) const { return m_.joints[static_cast<size_t>(a_.joints[static_cast<size_t>(j)].model_index)]; }
@@ -137,8 +143,19 @@ class Emitter {
   void constants(std::ostringstream& o) const {
     o << "constexpr double h = kStep;\n"
       << "constexpr int kStages = " << stages() << ";  // implicit stages per step\n"
-      << "constexpr double kRegularization = " << num(a_.regularization) << ";  // added to diag(S)\n"
-      << "constexpr double kStabilization = " << num(a_.stabilization) << ";  // alpha, 1/s\n";
+      << "constexpr double kRegularization = " << num(a_.regularization) << ";  // added to diag(S)\n";
+    switch (scheme_kind()) {
+      case Scheme::pcst:
+        o << "constexpr double kStabilization = " << num(a_.stabilization) << ";  // alpha, 1/s\n";
+        break;
+      case Scheme::baumgarte:
+        o << "constexpr double kBaumgarteAlpha = " << num(a_.baumgarte_alpha) << ";  // 1/s\n"
+          << "constexpr double kBaumgarteBeta = " << num(a_.baumgarte_beta) << ";  // 1/s\n";
+        break;
+      case Scheme::blajer:
+        o << "constexpr int kCorrections = " << m_.solver.corrections << ";  // position corrections per step\n";
+        break;
+    }
     if (a_.gravity) o << "const mbrt::Vec3 kGravity = " << vec3(*m_.gravity) << ";\n";
     o << "const mbrt::BodyPose kGroundPose = mbrt::ground_pose();\n"
       << "const mbrt::BodyVelocity kGroundVelocity = mbrt::ground_velocity();\n\n"
@@ -442,7 +459,27 @@ class Emitter {
     o << "  return a;\n}\n\n";
   }
 
-  void scheme(std::ostringstream& o) const {
+  enum class Scheme { pcst, baumgarte, blajer };
+  Scheme scheme_kind() const {
+    if (m_.solver.scheme == "baumgarte") return Scheme::baumgarte;
+    if (m_.solver.scheme == "blajer") return Scheme::blajer;
+    return Scheme::pcst;
+  }
+
+  // The stabilization term of S lambda = B M^-1 F + quad + stabilization.
+  std::string stabilization_term() const {
+    switch (scheme_kind()) {
+      case Scheme::pcst:
+        return "(2.0 / h) * (jacobian_times(c, generalized_velocities(s)) + kStabilization * phi)";
+      case Scheme::baumgarte:
+        return "(2.0 * kBaumgarteAlpha) * jacobian_times(c, generalized_velocities(s)) + "
+               "(kBaumgarteBeta * kBaumgarteBeta) * phi";
+      case Scheme::blajer: return "";
+    }
+    return "";
+  }
+
+  void scheme_stages(std::ostringstream& o) const {
     o << R"(// (s, accelerations at t) => (s): explicit stage, central difference.
 // Half kick of the velocities, then positions and Euler parameters to t + h
 // with the half-step velocities (docs/staggered-pcst.md, eqs. 1-3).
@@ -462,7 +499,11 @@ void explicit_stage(State& s) noexcept {
   s.t += h;
 }
 
-// (c, l, u_half) => (u): implicit stage. The end-of-step velocities satisfy
+)";
+    const std::string stab = stabilization_term();
+    switch (scheme_kind()) {
+      case Scheme::pcst:
+        o << R"(// (c, l, u_half) => (u): implicit stage. The end-of-step velocities satisfy
 // the velocity constraints, regularized by the penalty eps (eq. 5):
 //   (h/2) (S + 2 eps/h I) mu = B u_hat,  u = u_hat - h/2 M^-1 B^T mu.
 void implicit_stage(const ConstraintSystem& c, const Loads& l, const BodyVectors& u_half, BodyVectors& u) noexcept {
@@ -473,21 +514,64 @@ void implicit_stage(const ConstraintSystem& c, const Loads& l, const BodyVectors
   subtract_constraint_forces(c, mu, 0.5 * h, u);
 }
 
-// (c, l, s) => (s.lambda, accelerations): multipliers of the stabilized
+// (c, l, phi, s) => (s.lambda, accelerations): multipliers of the stabilized
 // companion equation (eq. 7)
 //   (S + 2 eps/h I) lambda = B M^-1 F + quad + (2/h) (B u + alpha phi)
 // which the next explicit stage applies: it steers phi at the next step to
 // (1 - alpha h) phi. quad was evaluated at the predicted half-step velocity.
-void dynamic_accelerations(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {
-  BodyVectors a = free_accelerations(l);
-  s.lambda = jacobian_times(c, a) + stacked_quad(c) +
-             (2.0 / h) * (jacobian_times(c, generalized_velocities(s)) + kStabilization * phi);
-  solve(c, s.lambda);
-  subtract_constraint_forces(c, s.lambda, 1.0, a);
-  set_accelerations(a, s);
+)";
+        break;
+      case Scheme::baumgarte:
+        o << R"(// (c, l, phi, s) => (s.lambda, accelerations): index-1 multipliers with
+// Baumgarte's terms, phi'' + 2 alpha phi' + beta^2 phi = 0:
+//   S lambda = B M^-1 F + quad + 2 alpha B u + beta^2 phi
+)";
+        break;
+      case Scheme::blajer:
+        o << R"(// (c, l, phi, s) => (s.lambda, accelerations): the projective (index-1)
+// multipliers, S lambda = B M^-1 F + quad (Blajer 1997, eq. 26). Drift is
+// removed after the step by mass-orthogonal corrections.
+)";
+        break;
+    }
+    o << "void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {\n"
+      << (stab.empty() ? "  (void)phi;\n" : "")
+      << "  BodyVectors a = free_accelerations(l);\n"
+      << "  s.lambda = jacobian_times(c, a) + stacked_quad(c)" << (stab.empty() ? "" : " +\n             " + stab)
+      << ";\n  solve(c, s.lambda);\n  subtract_constraint_forces(c, s.lambda, 1.0, a);\n  set_accelerations(a, s);\n}\n\n";
+    if (scheme_kind() == Scheme::blajer) {
+      o << R"(// (c, s) => (s): mass-orthogonal position correction (Blajer eq. 38),
+// dq = -M^-1 B^T S^-1 phi, rotations applied as body-frame increments.
+void correct_positions(const ConstraintSystem& c, State& s) noexcept {
+  Rows x = stacked_phi(c);
+  solve(c, x);
+  BodyVectors dq;
+  for (mbrt::Vec6& d : dq) d.setZero();
+  subtract_constraint_forces(c, x, 1.0, dq);
+)";
+      for (size_t i = 0; i < m_.bodies.size(); ++i) {
+        const std::string st = state_of(static_cast<int>(i));
+        o << "  " << st << ".r += dq[" << i << "].head<3>();\n";
+        if (a_.bodies[i].rigid) {
+          o << "  " << st << ".p = mbrt::quaternion_product(" << st << ".p, mbrt::cayley_increment(dq[" << i
+            << "].tail<3>())).normalized();\n";
+        }
+      }
+      o << R"(}
+
+// (c, s) => (s): mass-orthogonal velocity correction (Blajer eq. 40),
+// du = -M^-1 B^T S^-1 B u.
+void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
+  BodyVectors u = generalized_velocities(s);
+  Rows x = jacobian_times(c, u);
+  solve(c, x);
+  subtract_constraint_forces(c, x, 1.0, u);
+  set_velocities(u, s);
 }
 
-bool finite(const State& s) noexcept {
+)";
+    }
+    o << R"(bool finite(const State& s) noexcept {
   bool ok = std::isfinite(s.lambda.sum());
   for (const mbrt::RigidState& x : s.rigid) {
     ok = ok && mbrt::all_finite(x.r) && mbrt::all_finite(x.p) && mbrt::all_finite(x.v) && mbrt::all_finite(x.w);
@@ -498,9 +582,11 @@ bool finite(const State& s) noexcept {
 
 }  // namespace
 
-State initial_state() noexcept {
-  State s;
 )";
+  }
+
+  void initial_state_function(std::ostringstream& o) const {
+    o << "State initial_state() noexcept {\n  State s;\n";
     for (size_t i = 0; i < m_.bodies.size(); ++i) {
       const Body& b = m_.bodies[i];
       const std::string st = state_of(static_cast<int>(i));
@@ -518,17 +604,23 @@ State initial_state() noexcept {
   factorize(c);
   Loads l;
   applied_loads(k, l);
-  dynamic_accelerations(c, l, stacked_phi(c), s);
+  constraint_forces(c, l, stacked_phi(c), s);
   return s;
 }
 
-mbrt::StepStatus step(State& s) noexcept {
+)";
+  }
+
+  void step_function(std::ostringstream& o) const {
+    o << R"(mbrt::StepStatus step(State& s) noexcept {
   const State last_good = s;
   const BodyVectors a_old = accelerations_of(s);
   explicit_stage(s);
   const BodyVectors u_half = generalized_velocities(s);
 
-  // Constraint terms at the new positions, factorized once per step. The
+)";
+    if (scheme_kind() == Scheme::pcst) {
+      o << R"(  // Constraint terms at the new positions, factorized once per step. The
   // quadratic terms are taken at the predicted next half-step velocity
   // u_half + h a_old, which the next explicit stage will drift with.
   Kinematics k;
@@ -539,7 +631,7 @@ mbrt::StepStatus step(State& s) noexcept {
   k.vel = velocities_of(s);
   ConstraintSystem c;
   constraint_rows(k, c);
-  const bool positive = factorize(c);
+  bool positive = factorize(c);
 
   // Implicit stages: the first evaluates velocity-dependent loads at the
   // predicted end-of-step velocities u_half + h/2 a_old, the next ones at the
@@ -553,8 +645,50 @@ mbrt::StepStatus step(State& s) noexcept {
     implicit_stage(c, l, u_half, u);
   }
   set_velocities(u, s);
-  dynamic_accelerations(c, l, stacked_phi(c), s);
+  constraint_forces(c, l, stacked_phi(c), s);
+)";
+    } else {
+      o << R"(  // Constraint terms at the new positions, factorized once per step, with
+  // the quadratic terms at the predicted end-of-step velocity.
+  Kinematics k;
+  kinematics(s, k);
+  BodyVectors u = u_half;
+  for (int b = 0; b < kBodies; ++b) u[b] += (0.5 * h) * a_old[b];
+  set_velocities(u, s);
+  k.vel = velocities_of(s);
+  ConstraintSystem c;
+  constraint_rows(k, c);
+  bool positive = factorize(c);
+  const Rows phi = stacked_phi(c);
 
+  // Implicit stages, fixed-point passes on u = u_half + h/2 a(t + h, u).
+  Loads l;
+  for (int stage = 0; stage < kStages; ++stage) {
+    set_velocities(u, s);
+    k.vel = velocities_of(s);
+    applied_loads(k, l);
+    constraint_forces(c, l, phi, s);
+    const BodyVectors a = accelerations_of(s);
+    for (int b = 0; b < kBodies; ++b) u[b] = u_half[b] + (0.5 * h) * a[b];
+  }
+  set_velocities(u, s);
+)";
+      if (scheme_kind() == Scheme::blajer) {
+        o << R"(
+  // Post-step corrections, a fixed number for positions, then velocities.
+  for (int i = 0; i < kCorrections; ++i) {
+    if (i > 0) {
+      kinematics(s, k);
+      constraint_rows(k, c);
+      positive = factorize(c) && positive;
+    }
+    correct_positions(c, s);
+  }
+  correct_velocities(c, s);
+)";
+      }
+    }
+    o << R"(
   if (!finite(s)) {
     s = last_good;
     return mbrt::StepStatus::non_finite;
@@ -566,7 +700,11 @@ mbrt::StepStatus step(State& s) noexcept {
   return mbrt::StepStatus::ok;
 }
 
-mbrt::Energy energy(const State& s) noexcept {
+)";
+  }
+
+  void diagnostics(std::ostringstream& o) const {
+    o << R"(mbrt::Energy energy(const State& s) noexcept {
   Kinematics k;
   kinematics(s, k);
   Loads l;
@@ -608,8 +746,9 @@ double quaternion_norm_error(const State& s) noexcept {
     o << "// mbrt generated model '" << m_.name << "': " << m_.bodies.size() << " bodies (" << a_.rigid_count
       << " rigid, " << a_.particle_count << " particles), " << m_.joints.size() << " joints, " << a_.constraint_rows
       << " constraint rows.\n"
-      << "// Scheme staggered-pcst. Stage order per step: explicit_stage -> kinematics ->\n"
-      << "// constraint_rows -> factorize -> (applied_loads -> implicit_stage) x kStages.\n"
+      << "// Scheme " << m_.solver.scheme << ". Stage order per step: explicit_stage -> kinematics ->\n"
+      << "// constraint_rows -> factorize -> (applied_loads -> implicit stage) x kStages"
+      << (scheme_kind() == Scheme::blajer ? " -> corrections" : "") << ".\n"
       << "// Left out for this scene:";
     for (const std::string& s : a_.skipped) o << "\n//   " << s;
     if (a_.skipped.empty()) o << " nothing";
@@ -628,7 +767,10 @@ double quaternion_norm_error(const State& s) noexcept {
     loads_stage(o);
     constraint_stage(o);
     mass_products(o);
-    scheme(o);
+    scheme_stages(o);
+    initial_state_function(o);
+    step_function(o);
+    diagnostics(o);
     o << "}  // namespace mbrt::models::" << m_.name << "\n";
     return o.str();
   }

@@ -91,6 +91,12 @@ struct SolverSettings {
   // the default from the step, see docs/staggered-pcst.md).
   double penalty = 1.0e-10;
   double stabilization = 0.0;
+  // baumgarte: gains of phi'' + 2 alpha phi' + beta^2 phi = 0 (1/s; 0 picks
+  // the default 1/(10 h), see docs/schemes.md).
+  double baumgarte_alpha = 0.0;
+  double baumgarte_beta = 0.0;
+  // blajer: mass-orthogonal position corrections after each step.
+  int corrections = 1;
 };
 
 struct Model {

@@ -35,7 +35,8 @@ const Keys kJointKeys = {"name", "type", "body1", "body2", "point", "axis",
                          "axis1", "axis2", "point1", "point2", "length"};
 const Keys kForceKeys = {"type", "body1", "body2", "point1", "point2", "stiffness", "damping",
                          "rest_length", "axis", "value", "body", "point", "vector"};
-const Keys kSolverKeys = {"scheme", "step", "euler_updates", "penalty", "stabilization"};
+const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
+                          "stabilization", "baumgarte_alpha", "baumgarte_beta", "corrections"};
 
 const std::vector<std::pair<std::string, JointType>> kJointTypes = {
     {"spherical", JointType::spherical},     {"revolute", JointType::revolute},
@@ -559,6 +560,9 @@ SolverSettings parse_solver(const Value& v) {
   if (auto x = s.find("euler_updates")) solver.euler_updates = read_integer_at_least(*x, 1);
   if (auto x = s.find("penalty")) solver.penalty = read_non_negative(*x);
   if (auto x = s.find("stabilization")) solver.stabilization = read_non_negative(*x);
+  if (auto x = s.find("baumgarte_alpha")) solver.baumgarte_alpha = read_non_negative(*x);
+  if (auto x = s.find("baumgarte_beta")) solver.baumgarte_beta = read_non_negative(*x);
+  if (auto x = s.find("corrections")) solver.corrections = read_integer_at_least(*x, 1);
   return solver;
 }
 

@@ -102,7 +102,8 @@ forces:
   - {type: torque, body1: ground, body2: crank, axis: [0, 0, 5], value: 0.033}
   - {type: force, body: crank, point: [1, 1, 1], vector: [1, 0, 0]}
   - {type: force, body: bob, vector: [0, -2, 0]}
-solver: {scheme: ali3p, step: 2.0e-3, euler_updates: 3, penalty: 1.0e-8, stabilization: 50}
+solver: {scheme: ali3p, step: 2.0e-3, euler_updates: 3, penalty: 1.0e-8, stabilization: 50,
+         baumgarte_alpha: 7, baumgarte_beta: 8, corrections: 2}
 )";
 
 TEST_CASE("a model using every key, body, joint and force type parses into the structs") {
@@ -207,6 +208,9 @@ TEST_CASE("a model using every key, body, joint and force type parses into the s
   CHECK(m.solver.euler_updates == 3);
   CHECK(m.solver.penalty == 1.0e-8);
   CHECK(m.solver.stabilization == 50);
+  CHECK(m.solver.baumgarte_alpha == 7);
+  CHECK(m.solver.baumgarte_beta == 8);
+  CHECK(m.solver.corrections == 2);
 }
 
 TEST_CASE("a minimal model keeps the defaults, and a free-floating body needs no joints") {
@@ -226,6 +230,8 @@ forces: []
   CHECK(m.solver.euler_updates == defaults.euler_updates);
   CHECK(m.solver.penalty == defaults.penalty);
   CHECK(m.solver.stabilization == defaults.stabilization);
+  CHECK(m.solver.baumgarte_alpha == defaults.baumgarte_alpha);
+  CHECK(m.solver.corrections == defaults.corrections);
   CHECK(m.bodies[0].angular_velocity == Eigen::Vector3d(0.1, 5, 0));
 }
 
@@ -372,7 +378,7 @@ solver:
   stepsize: 0.001
 )",
                     "solver.stepsize", 6,
-                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization)");
+                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization, baumgarte_alpha, baumgarte_beta, corrections)");
 }
 
 TEST_CASE("a key given twice in one map is rejected naming the first") {
