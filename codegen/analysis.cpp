@@ -1,6 +1,7 @@
 #include "analysis.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <amd.h>
@@ -18,6 +19,8 @@ int constraint_rows(JointType type) {
     case JointType::prismatic: return 5;
     case JointType::fixed: return 6;
     case JointType::distance: return 1;
+    case JointType::screw: return 5;
+    case JointType::planar: return 3;
   }
   return 0;
 }
@@ -31,8 +34,21 @@ const char* joint_type_name(JointType type) {
     case JointType::prismatic: return "prismatic";
     case JointType::fixed: return "fixed";
     case JointType::distance: return "distance";
+    case JointType::screw: return "screw";
+    case JointType::planar: return "planar";
   }
   return "?";
+}
+
+mbrt::TimeValue evaluate(const TimeFunction& f, double t) {
+  if (f.is_sine) return mbrt::sine({f.amplitude, f.omega, f.phase, f.offset}, t);
+  mbrt::TimeValue v{0.0, 0.0, 0.0};
+  for (size_t k = f.polynomial.size(); k-- > 0;) {
+    v.ddf = v.ddf * t + 2.0 * v.df;
+    v.df = v.df * t + v.f;
+    v.f = v.f * t + f.polynomial[k];
+  }
+  return v;
 }
 
 namespace {
@@ -104,19 +120,29 @@ mbrt::JointFrame joint_frame(const Model& model, const Joint& j, const std::stri
   f.b2 = p2.R.transpose() * b;
   f.c2 = p2.R.transpose() * c;
   f.length = 0.0;
+  f.pitch = j.lead / (2.0 * M_PI);
   return f;
 }
 
-// Joints coupled through a shared moving body (ground couples nothing).
-std::vector<std::vector<int>> coupling(const Model& model) {
-  const size_t n = model.joints.size();
+const char* driver_kernel(DriverType type) {
+  switch (type) {
+    case DriverType::joint_angle: return "joint_angle_driver";
+    case DriverType::joint_distance: return "joint_distance_driver";
+    case DriverType::distance: return "distance_driver";
+  }
+  return "?";
+}
+
+// Blocks coupled through a shared moving body (ground couples nothing).
+std::vector<std::vector<int>> coupling(const std::vector<ConstraintBlock>& blocks) {
+  const size_t n = blocks.size();
   std::vector<std::vector<int>> out(n);
   for (size_t i = 0; i < n; ++i) {
     for (size_t k = 0; k < n; ++k) {
       if (i == k) continue;
-      const Joint& a = model.joints[i];
-      const Joint& b = model.joints[k];
-      const auto shares = [](int x, const Joint& j) { return x != kGround && (x == j.body1 || x == j.body2); };
+      const ConstraintBlock& a = blocks[i];
+      const ConstraintBlock& b = blocks[k];
+      const auto shares = [](int x, const ConstraintBlock& j) { return x != kGround && (x == j.body1 || x == j.body2); };
       if (shares(a.body1, b) || shares(a.body2, b)) out[i].push_back(static_cast<int>(k));
     }
   }
@@ -180,9 +206,27 @@ Analysis analyse(const Model& model) {
   for (size_t i = 0; i < model.joints.size(); ++i) {
     const Joint& j = model.joints[i];
     const std::string key = "joints[" + std::to_string(i) + "]";
-    JointPlan plan{static_cast<int>(i), constraint_rows(j.type), a.constraint_rows, joint_frame(model, j, key)};
-    a.constraint_rows += plan.rows;
-    a.joints.push_back(plan);
+    a.constraints.push_back({j.name, j.where, joint_type_name(j.type), j.body1, j.body2, constraint_rows(j.type),
+                             a.constraint_rows, joint_frame(model, j, key), nullptr});
+    a.constraint_rows += a.constraints.back().rows;
+  }
+  for (size_t i = 0; i < model.drivers.size(); ++i) {
+    const Driver& d = model.drivers[i];
+    const std::string key = "drivers[" + std::to_string(i) + "]";
+    ConstraintBlock block{d.name, d.where, driver_kernel(d.type), d.body1, d.body2, 1, a.constraint_rows, {}, &d.function};
+    if (d.type == DriverType::distance) {
+      block.frame.s1 = body_point(model, d.body1, d.point1, d.where, key + ".point1");
+      block.frame.s2 = body_point(model, d.body2, d.point2, d.where, key + ".point2");
+    } else {
+      // The driven joint's own frame: angle and slide are measured from t = 0.
+      const size_t joint = static_cast<size_t>(d.joint);
+      block.body1 = model.joints[joint].body1;
+      block.body2 = model.joints[joint].body2;
+      block.frame = a.constraints[joint].frame;
+    }
+    a.constraints.push_back(block);
+    a.constraint_rows += 1;
+    a.rheonomic = true;
   }
   for (size_t i = 0; i < model.forces.size(); ++i) {
     const Force& f = model.forces[i];
@@ -207,7 +251,7 @@ Analysis analyse(const Model& model) {
     }
     a.forces.push_back(plan);
   }
-  a.pattern = factor_pattern(coupling(model));
+  a.pattern = factor_pattern(coupling(a.constraints));
 
   // Scheme parameters (docs/staggered-pcst.md, docs/schemes.md).
   const double h = model.solver.step;
@@ -215,7 +259,7 @@ Analysis analyse(const Model& model) {
   a.baumgarte_alpha = model.solver.baumgarte_alpha > 0.0 ? model.solver.baumgarte_alpha : 0.1 / h;
   a.baumgarte_beta = model.solver.baumgarte_beta > 0.0 ? model.solver.baumgarte_beta : 0.1 / h;
   if (a.constraint_rows > 0) {
-    const StackedConstraints c = evaluate_constraints(model, a.joints);
+    const StackedConstraints c = evaluate_constraints(model, a.constraints, 0.0);
     const Eigen::MatrixXd S = c.B * inverse_mass_matrix(model) * c.B.transpose();
     a.regularization = model.solver.penalty * S.diagonal().maxCoeff();
   }
@@ -226,6 +270,7 @@ Analysis analyse(const Model& model) {
   for (const BodyPlan& b : a.bodies) principal += b.rigid && b.principal_axes;
   if (principal > 0) a.skipped.push_back(std::to_string(principal) + " principal-axis bodies: no inertia products");
   if (!a.velocity_dependent_forces) a.skipped.push_back("no velocity-dependent forces: one stage per step");
+  if (!a.rheonomic) a.skipped.push_back("no drivers: no explicit time terms");
   return a;
 }
 

@@ -22,11 +22,17 @@ struct BodyPlan {
   bool isotropic;       // equal principal moments: no gyroscopic torque
 };
 
-struct JointPlan {
-  int model_index;
-  int rows;             // constraint rows of this joint
+// One block of constraint rows: a joint, or a driver (rheonomic).
+struct ConstraintBlock {
+  std::string name;
+  SourceLocation where;
+  std::string kernel;   // runtime function that evaluates it: "revolute", "joint_angle_driver", ...
+  int body1;
+  int body2;
+  int rows;             // constraint rows of this block
   int first_row;        // offset in the stacked multiplier vector
   mbrt::JointFrame frame;
+  const TimeFunction* function = nullptr;  // drivers only (points into the Model)
 };
 
 struct ForcePlan {
@@ -37,7 +43,7 @@ struct ForcePlan {
 };
 
 // Block pattern of the Cholesky factor of S, in elimination order. Blocks are
-// indexed by joint (JointPlan index).
+// indexed by constraint block (Analysis::constraints).
 struct FactorPattern {
   std::vector<int> order;                   // joints in elimination order
   std::vector<std::vector<int>> lower;      // lower[k]: joints i eliminated after k with L(i,k) != 0
@@ -49,8 +55,9 @@ struct Analysis {
   std::vector<BodyPlan> bodies;  // same order as Model::bodies
   int rigid_count = 0;
   int particle_count = 0;
-  std::vector<JointPlan> joints;
+  std::vector<ConstraintBlock> constraints;  // joints, then drivers
   int constraint_rows = 0;
+  bool rheonomic = false;                    // drivers present: explicit time terms
   std::vector<ForcePlan> forces;
   FactorPattern pattern;
   bool gravity = false;
@@ -69,5 +76,8 @@ Analysis analyse(const Model& model);
 // Row count of a joint type.
 int constraint_rows(JointType type);
 const char* joint_type_name(JointType type);
+
+// A time function's value and derivatives at t (generation-time checks).
+mbrt::TimeValue evaluate(const TimeFunction& f, double t);
 
 }  // namespace mbrt::codegen

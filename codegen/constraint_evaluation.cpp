@@ -1,5 +1,7 @@
 #include "constraint_evaluation.hpp"
 
+#include <stdexcept>
+
 #include <mbrt/body_state.hpp>
 
 namespace mbrt::codegen {
@@ -19,35 +21,47 @@ Motion motion_of(const Model& model, int index) {
 }
 
 template <int N>
-void stack(const mbrt::ConstraintRows<N>& rows, const Joint& joint, int first_row, StackedConstraints& out) {
-  out.phi.segment<N>(first_row) = rows.phi;
-  if (joint.body1 != kGround) out.B.block<N, 6>(first_row, 6 * joint.body1) += rows.J1;
-  if (joint.body2 != kGround) out.B.block<N, 6>(first_row, 6 * joint.body2) += rows.J2;
+void stack(const mbrt::ConstraintRows<N>& rows, const ConstraintBlock& block, StackedConstraints& out) {
+  out.phi.segment<N>(block.first_row) = rows.phi;
+  out.phi_t.segment<N>(block.first_row) = rows.phi_t;
+  if (block.body1 != kGround) out.B.block<N, 6>(block.first_row, 6 * block.body1) += rows.J1;
+  if (block.body2 != kGround) out.B.block<N, 6>(block.first_row, 6 * block.body2) += rows.J2;
+}
+
+// The runtime kernel named by the block, as the generated code calls it.
+void evaluate_block(const ConstraintBlock& b, const mbrt::BodyMotion& m1, const mbrt::BodyMotion& m2, double t,
+                    StackedConstraints& out) {
+  const std::string& k = b.kernel;
+  const mbrt::JointFrame& f = b.frame;
+  if (k == "spherical") return stack(mbrt::spherical(f, m1, m2), b, out);
+  if (k == "revolute") return stack(mbrt::revolute(f, m1, m2), b, out);
+  if (k == "universal") return stack(mbrt::universal(f, m1, m2), b, out);
+  if (k == "cylindrical") return stack(mbrt::cylindrical(f, m1, m2), b, out);
+  if (k == "prismatic") return stack(mbrt::prismatic(f, m1, m2), b, out);
+  if (k == "fixed") return stack(mbrt::fixed(f, m1, m2), b, out);
+  if (k == "distance") return stack(mbrt::distance(f, m1, m2), b, out);
+  if (k == "screw") return stack(mbrt::screw(f, m1, m2), b, out);
+  if (k == "planar") return stack(mbrt::planar(f, m1, m2), b, out);
+  const mbrt::TimeValue target = evaluate(*b.function, t);
+  if (k == "joint_angle_driver") return stack(mbrt::joint_angle_driver(f, m1, m2, target), b, out);
+  if (k == "joint_distance_driver") return stack(mbrt::joint_distance_driver(f, m1, m2, target), b, out);
+  if (k == "distance_driver") return stack(mbrt::distance_driver(f, m1, m2, target), b, out);
+  throw std::logic_error("no kernel named " + k);
 }
 
 }  // namespace
 
-StackedConstraints evaluate_constraints(const Model& model, const std::vector<JointPlan>& joints) {
+StackedConstraints evaluate_constraints(const Model& model, const std::vector<ConstraintBlock>& blocks, double t) {
   int rows = 0;
-  for (const JointPlan& j : joints) rows += j.rows;
+  for (const ConstraintBlock& b : blocks) rows += b.rows;
   StackedConstraints out;
   out.phi = Eigen::VectorXd::Zero(rows);
+  out.phi_t = Eigen::VectorXd::Zero(rows);
   out.B = Eigen::MatrixXd::Zero(rows, 6 * static_cast<int>(model.bodies.size()));
-  for (const JointPlan& plan : joints) {
-    const Joint& joint = model.joints[static_cast<size_t>(plan.model_index)];
-    const Motion a = motion_of(model, joint.body1);
-    const Motion b = motion_of(model, joint.body2);
-    const mbrt::BodyMotion m1{a.pose, a.vel};
-    const mbrt::BodyMotion m2{b.pose, b.vel};
-    switch (joint.type) {
-      case JointType::spherical: stack(mbrt::spherical(plan.frame, m1, m2), joint, plan.first_row, out); break;
-      case JointType::revolute: stack(mbrt::revolute(plan.frame, m1, m2), joint, plan.first_row, out); break;
-      case JointType::universal: stack(mbrt::universal(plan.frame, m1, m2), joint, plan.first_row, out); break;
-      case JointType::cylindrical: stack(mbrt::cylindrical(plan.frame, m1, m2), joint, plan.first_row, out); break;
-      case JointType::prismatic: stack(mbrt::prismatic(plan.frame, m1, m2), joint, plan.first_row, out); break;
-      case JointType::fixed: stack(mbrt::fixed(plan.frame, m1, m2), joint, plan.first_row, out); break;
-      case JointType::distance: stack(mbrt::distance(plan.frame, m1, m2), joint, plan.first_row, out); break;
-    }
+  for (const ConstraintBlock& block : blocks) {
+    const Motion a = motion_of(model, block.body1);
+    const Motion b = motion_of(model, block.body2);
+    evaluate_block(block, {a.pose, a.vel}, {b.pose, b.vel}, t, out);
   }
   Eigen::VectorXd u(6 * model.bodies.size());
   for (size_t i = 0; i < model.bodies.size(); ++i) {
@@ -55,7 +69,7 @@ StackedConstraints evaluate_constraints(const Model& model, const std::vector<Jo
     u.segment<3>(6 * static_cast<int>(i)) = m.vel.v;
     u.segment<3>(6 * static_cast<int>(i) + 3) = m.vel.w;
   }
-  out.phi_dot = out.B * u;
+  out.phi_dot = out.B * u + out.phi_t;
   return out;
 }
 

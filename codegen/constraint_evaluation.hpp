@@ -13,11 +13,13 @@ namespace mbrt::codegen {
 
 struct StackedConstraints {
   Eigen::VectorXd phi;
-  Eigen::VectorXd phi_dot;
-  Eigen::MatrixXd B;  // constraint_rows x 6 * bodies
+  Eigen::VectorXd phi_dot;  // B u + phi_t
+  Eigen::VectorXd phi_t;    // explicit time derivative (drivers)
+  Eigen::MatrixXd B;        // constraint_rows x 6 * bodies
 };
 
-StackedConstraints evaluate_constraints(const Model& model, const std::vector<JointPlan>& joints);
+// At the model's body states and time t.
+StackedConstraints evaluate_constraints(const Model& model, const std::vector<ConstraintBlock>& blocks, double t);
 
 // Diagonal-block inverse mass matrix, 6 * bodies square (zero rotational
 // blocks for particles).

@@ -65,10 +65,11 @@ class Emitter {
   }
   const Body& body(int i) const { return m_.bodies[static_cast<size_t>(i)]; }
   const BodyPlan& plan(int i) const { return a_.bodies[static_cast<size_t>(i)]; }
-  const Joint& joint(int j) const { return m_.joints[static_cast<size_t>(a_.joints[static_cast<size_t>(j)].model_index)]; }
-  int rows(int j) const { return a_.joints[static_cast<size_t>(j)].rows; }
-  int first_row(int j) const { return a_.joints[static_cast<size_t>(j)].first_row; }
-  std::string jname(int j) const { return joint(j).name; }
+  const ConstraintBlock& block(int j) const { return a_.constraints[static_cast<size_t>(j)]; }
+  int blocks() const { return static_cast<int>(a_.constraints.size()); }
+  int rows(int j) const { return block(j).rows; }
+  int first_row(int j) const { return block(j).first_row; }
+  std::string jname(int j) const { return block(j).name; }
 
   std::string state_of(int i) const {
     return plan(i).rigid ? "s.rigid[" + std::to_string(plan(i).slot) + "]" : "s.particle[" + std::to_string(plan(i).slot) + "]";
@@ -83,10 +84,10 @@ class Emitter {
   // Name of the M^-1 B^T block of joint j for body b.
   std::string mbt(int j, int b) const { return "c.mbt_" + std::to_string(j) + "_" + std::to_string(b); }
   std::string L(int i, int k) const { return "c.L_" + std::to_string(i) + "_" + std::to_string(k); }
-  std::string side(int j, int b) const { return joint(j).body1 == b ? "J1" : "J2"; }
+  std::string side(int j, int b) const { return block(j).body1 == b ? "J1" : "J2"; }
   std::vector<int> moving_bodies(int j) const {
     std::vector<int> out;
-    for (int b : {joint(j).body1, joint(j).body2}) if (b != kGround) out.push_back(b);
+    for (int b : {block(j).body1, block(j).body2}) if (b != kGround) out.push_back(b);
     return out;
   }
 
@@ -104,17 +105,16 @@ class Emitter {
       << "inline constexpr int kBodies = " << m_.bodies.size() << ";\n"
       << "inline constexpr int kRigidBodies = " << a_.rigid_count << ";\n"
       << "inline constexpr int kParticles = " << a_.particle_count << ";\n"
-      << "inline constexpr int kJoints = " << m_.joints.size() << ";\n"
+      << "inline constexpr int kConstraintBlocks = " << blocks() << ";  // joints, then drivers\n"
       << "inline constexpr int kConstraintRows = " << a_.constraint_rows << ";\n\n"
       << "inline constexpr std::array<mbrt::BodyInfo, kBodies> kBodyInfo{{\n";
     for (size_t i = 0; i < m_.bodies.size(); ++i) {
       o << "    {\"" << m_.bodies[i].name << "\", " << (a_.bodies[i].rigid ? "true" : "false") << ", "
         << a_.bodies[i].slot << "},\n";
     }
-    o << "}};\n\ninline constexpr std::array<mbrt::JointInfo, kJoints> kJointInfo{{\n";
-    for (size_t j = 0; j < a_.joints.size(); ++j) {
-      o << "    {\"" << jname(static_cast<int>(j)) << "\", \"" << joint_type_name(joint(static_cast<int>(j)).type)
-        << "\", " << first_row(static_cast<int>(j)) << ", " << rows(static_cast<int>(j)) << "},\n";
+    o << "}};\n\ninline constexpr std::array<mbrt::ConstraintInfo, kConstraintBlocks> kConstraintInfo{{\n";
+    for (int j = 0; j < blocks(); ++j) {
+      o << "    {\"" << jname(j) << "\", \"" << block(j).kernel << "\", " << first_row(j) << ", " << rows(j) << "},\n";
     }
     o << "}};\n\n"
       << "// Everything that changes from step to step; the caller owns it.\n"
@@ -125,7 +125,7 @@ class Emitter {
       << "  // Accelerations at t, reused by the next step's explicit stage.\n"
       << "  std::array<mbrt::RigidAcceleration, kRigidBodies> rigid_acceleration;\n"
       << "  std::array<mbrt::Vec3, kParticles> particle_acceleration;\n"
-      << "  // Constraint multipliers of the last step, rows as in kJointInfo.\n"
+      << "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n"
       << "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n"
       << "};\n\n"
       << "// The model file's initial state with consistent accelerations.\n"
@@ -173,12 +173,22 @@ class Emitter {
           << mat3(b.inertia) << ", " << mat3(b.inertia.inverse()) << "};\n";
       }
     }
-    o << "\n// Joint frames in body axes.\n";
-    for (size_t j = 0; j < a_.joints.size(); ++j) {
-      const JointFrame& f = a_.joints[j].frame;
-      o << "const mbrt::JointFrame " << jname(static_cast<int>(j)) << "_frame{" << vec3(f.s1) << ", " << vec3(f.s2)
-        << ",\n    " << vec3(f.a1) << ", " << vec3(f.b1) << ", " << vec3(f.c1) << ",\n    " << vec3(f.a2) << ", "
-        << vec3(f.b2) << ", " << vec3(f.c2) << ", " << num(f.length) << "};\n";
+    o << "\n// Joint and driver frames in body axes; drivers' functions of time.\n";
+    for (int j = 0; j < blocks(); ++j) {
+      const JointFrame& f = block(j).frame;
+      o << "const mbrt::JointFrame " << jname(j) << "_frame{" << vec3(f.s1) << ", " << vec3(f.s2) << ",\n    "
+        << vec3(f.a1) << ", " << vec3(f.b1) << ", " << vec3(f.c1) << ",\n    " << vec3(f.a2) << ", " << vec3(f.b2)
+        << ", " << vec3(f.c2) << ", " << num(f.length) << ", " << num(f.pitch) << "};\n";
+      if (const TimeFunction* fn = block(j).function) {
+        if (fn->is_sine) {
+          o << "const mbrt::Sine " << jname(j) << "_sine{" << num(fn->amplitude) << ", " << num(fn->omega) << ", "
+            << num(fn->phase) << ", " << num(fn->offset) << "};  // offset + amplitude sin(omega t + phase)\n";
+        } else {
+          o << "constexpr std::array<double, " << fn->polynomial.size() << "> " << jname(j) << "_polynomial{";
+          for (size_t k = 0; k < fn->polynomial.size(); ++k) o << (k ? ", " : "") << num(fn->polynomial[k]);
+          o << "};  // c0 + c1 t + ...\n";
+        }
+      }
     }
     o << "\n// Force elements in body axes.\n";
     for (size_t e = 0; e < a_.forces.size(); ++e) {
@@ -219,11 +229,10 @@ class Emitter {
       << "// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of\n"
       << "// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.\n"
       << "struct ConstraintSystem {\n";
-    for (size_t j = 0; j < a_.joints.size(); ++j) {
-      const int ji = static_cast<int>(j);
-      o << "  mbrt::ConstraintRows<" << rows(ji) << "> rows_" << jname(ji) << ";  // "
-        << joint_type_name(joint(ji).type) << " " << m_.body_name(joint(ji).body1) << " - "
-        << m_.body_name(joint(ji).body2) << ", rows " << first_row(ji) << ".." << first_row(ji) + rows(ji) - 1 << "\n";
+    for (int ji = 0; ji < blocks(); ++ji) {
+      o << "  mbrt::ConstraintRows<" << rows(ji) << "> rows_" << jname(ji) << ";  // " << block(ji).kernel << " "
+        << m_.body_name(block(ji).body1) << " - " << m_.body_name(block(ji).body2) << ", rows " << first_row(ji)
+        << ".." << first_row(ji) + rows(ji) - 1 << "\n";
       for (int b : moving_bodies(ji)) {
         o << "  " << block_type(6, rows(ji)) << " mbt_" << ji << "_" << b << ";  // M^-1 B^T: " << jname(ji) << ", "
           << body(b).name << "\n";
@@ -332,20 +341,25 @@ class Emitter {
   }
 
   void constraint_stage(std::ostringstream& o) const {
-    o << "// (k) => (c.rows_*): constraint values, Jacobians and quadratic terms.\n"
-      << "void constraint_rows(const Kinematics& k, ConstraintSystem& c) noexcept {\n";
-    if (a_.joints.empty()) o << "  (void)k;\n  (void)c;\n";
-    for (size_t j = 0; j < a_.joints.size(); ++j) {
-      const Joint& jt = joint(static_cast<int>(j));
-      o << "  c.rows_" << jt.name << " = mbrt::" << joint_type_name(jt.type) << "(" << jt.name << "_frame, "
-        << motion(jt.body1) << ", " << motion(jt.body2) << ");\n";
+    o << "// (k, t) => (c.rows_*): constraint values, Jacobians and acceleration terms.\n"
+      << "void constraint_rows(const Kinematics& k, double t, ConstraintSystem& c) noexcept {\n";
+    if (blocks() == 0) o << "  (void)k;\n  (void)c;\n";
+    if (!a_.rheonomic) o << "  (void)t;\n";
+    for (int j = 0; j < blocks(); ++j) {
+      const ConstraintBlock& b = block(j);
+      o << "  c.rows_" << b.name << " = mbrt::" << b.kernel << "(" << b.name << "_frame, " << motion(b.body1) << ", "
+        << motion(b.body2);
+      if (b.function) {
+        o << ",\n      " << (b.function->is_sine ? "mbrt::sine(" + b.name + "_sine, t)"
+                                                  : "mbrt::polynomial(" + b.name + "_polynomial, t)");
+      }
+      o << ");\n";
     }
     o << "}\n\n"
       << "// (c.rows_*) => (c.mbt_*, c.L_*): M^-1 B^T, then S block by block in\n"
       << "// elimination order (" << a_.pattern.fill_blocks << " fill blocks); false if a pivot is not positive.\n"
       << "bool factorize(ConstraintSystem& c) noexcept {\n  bool positive = true;\n";
-    for (size_t j = 0; j < a_.joints.size(); ++j) {
-      const int ji = static_cast<int>(j);
+    for (int ji = 0; ji < blocks(); ++ji) {
       for (int b : moving_bodies(ji)) {
         o << "  " << mbt(ji, b) << " = mbrt::inverse_mass_times_transpose(" << mass_of(b) << ", c.rows_" << jname(ji)
           << "." << side(ji, b) << ");\n";
@@ -379,7 +393,7 @@ class Emitter {
 
     o << "// (c.L_*, x) => (x): x := S^-1 x by forward and backward substitution.\n"
       << "void solve(const ConstraintSystem& c, Rows& x) noexcept {\n";
-    if (a_.joints.empty()) o << "  (void)c;\n  (void)x;\n";
+    if (blocks() == 0) o << "  (void)c;\n  (void)x;\n";
     for (size_t pk = 0; pk < order.size(); ++pk) {
       const int k = order[pk];
       o << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
@@ -399,9 +413,8 @@ class Emitter {
 
     o << "// (c, u) => (B u)\n"
       << "Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  Rows y;\n";
-    if (a_.joints.empty()) o << "  (void)c;\n  (void)u;\n";
-    for (size_t j = 0; j < a_.joints.size(); ++j) {
-      const int ji = static_cast<int>(j);
+    if (blocks() == 0) o << "  (void)c;\n  (void)u;\n";
+    for (int ji = 0; ji < blocks(); ++ji) {
       o << "  " << seg("y", ji) << " = ";
       const auto mb = moving_bodies(ji);
       for (size_t q = 0; q < mb.size(); ++q) {
@@ -413,25 +426,31 @@ class Emitter {
       << "// (c, lambda) => (u): u -= scale M^-1 B^T lambda\n"
       << "void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,\n"
       << "                                BodyVectors& u) noexcept {\n";
-    if (a_.joints.empty()) o << "  (void)c;\n  (void)lambda;\n  (void)scale;\n  (void)u;\n";
-    for (size_t j = 0; j < a_.joints.size(); ++j) {
-      const int ji = static_cast<int>(j);
+    if (blocks() == 0) o << "  (void)c;\n  (void)lambda;\n  (void)scale;\n  (void)u;\n";
+    for (int ji = 0; ji < blocks(); ++ji) {
       for (int b : moving_bodies(ji)) {
         o << "  u[" << b << "] -= scale * (" << mbt(ji, b) << " * " << seg("lambda", ji) << ");\n";
       }
     }
     o << "}\n\n"
-      << "// (c) => (phi), (c) => (quad): stacked position residuals and quadratic terms.\n"
-      << "Rows stacked_phi(const ConstraintSystem& c) noexcept {\n  Rows y;\n";
-    if (a_.joints.empty()) o << "  (void)c;\n";
-    for (size_t j = 0; j < a_.joints.size(); ++j) {
-      o << "  " << seg("y", static_cast<int>(j)) << " = c.rows_" << jname(static_cast<int>(j)) << ".phi;\n";
+      << "// (c) => (phi), (c) => (quad): stacked position residuals and acceleration terms.\n";
+    stacked(o, "phi");
+    stacked(o, "quad");
+    o << "// (c, u) => (phi_dot = B u + phi_t): velocity residuals.\n"
+      << "Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n";
+    if (a_.rheonomic) {
+      stacked(o, "phi_t");
+      o << "  return jacobian_times(c, u) + stacked_phi_t(c);\n}\n\n";
+    } else {
+      o << "  return jacobian_times(c, u);  // no drivers: phi_t = 0\n}\n\n";
     }
-    o << "  return y;\n}\n\nRows stacked_quad(const ConstraintSystem& c) noexcept {\n  Rows y;\n";
-    if (a_.joints.empty()) o << "  (void)c;\n";
-    for (size_t j = 0; j < a_.joints.size(); ++j) {
-      o << "  " << seg("y", static_cast<int>(j)) << " = c.rows_" << jname(static_cast<int>(j)) << ".quad;\n";
-    }
+  }
+
+  // Rows stacked_<member>(c): one member of every block, stacked.
+  void stacked(std::ostringstream& o, const std::string& member) const {
+    o << "Rows stacked_" << member << "(const ConstraintSystem& c) noexcept {\n  Rows y;\n";
+    if (blocks() == 0) o << "  (void)c;\n";
+    for (int j = 0; j < blocks(); ++j) o << "  " << seg("y", j) << " = c.rows_" << jname(j) << "." << member << ";\n";
     o << "  return y;\n}\n\n";
   }
 
@@ -470,9 +489,9 @@ class Emitter {
   std::string stabilization_term() const {
     switch (scheme_kind()) {
       case Scheme::pcst:
-        return "(2.0 / h) * (jacobian_times(c, generalized_velocities(s)) + kStabilization * phi)";
+        return "(2.0 / h) * (velocity_residual(c, generalized_velocities(s)) + kStabilization * phi)";
       case Scheme::baumgarte:
-        return "(2.0 * kBaumgarteAlpha) * jacobian_times(c, generalized_velocities(s)) + "
+        return "(2.0 * kBaumgarteAlpha) * velocity_residual(c, generalized_velocities(s)) + "
                "(kBaumgarteBeta * kBaumgarteBeta) * phi";
       case Scheme::blajer: return "";
     }
@@ -509,7 +528,7 @@ void explicit_stage(State& s) noexcept {
 void implicit_stage(const ConstraintSystem& c, const Loads& l, const BodyVectors& u_half, BodyVectors& u) noexcept {
   const BodyVectors a_free = free_accelerations(l);
   for (int b = 0; b < kBodies; ++b) u[b] = u_half[b] + (0.5 * h) * a_free[b];
-  Rows mu = (2.0 / h) * jacobian_times(c, u);
+  Rows mu = (2.0 / h) * velocity_residual(c, u);
   solve(c, mu);
   subtract_constraint_forces(c, mu, 0.5 * h, u);
 }
@@ -563,7 +582,7 @@ void correct_positions(const ConstraintSystem& c, State& s) noexcept {
 // du = -M^-1 B^T S^-1 B u.
 void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
   BodyVectors u = generalized_velocities(s);
-  Rows x = jacobian_times(c, u);
+  Rows x = velocity_residual(c, u);
   solve(c, x);
   subtract_constraint_forces(c, x, 1.0, u);
   set_velocities(u, s);
@@ -600,7 +619,7 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
     o << R"(  Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, c);
+  constraint_rows(k, s.t, c);
   factorize(c);
   Loads l;
   applied_loads(k, l);
@@ -630,7 +649,7 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
   set_velocities(u, s);
   k.vel = velocities_of(s);
   ConstraintSystem c;
-  constraint_rows(k, c);
+  constraint_rows(k, s.t, c);
   bool positive = factorize(c);
 
   // Implicit stages: the first evaluates velocity-dependent loads at the
@@ -657,7 +676,7 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
   set_velocities(u, s);
   k.vel = velocities_of(s);
   ConstraintSystem c;
-  constraint_rows(k, c);
+  constraint_rows(k, s.t, c);
   bool positive = factorize(c);
   const Rows phi = stacked_phi(c);
 
@@ -679,7 +698,7 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
   for (int i = 0; i < kCorrections; ++i) {
     if (i > 0) {
       kinematics(s, k);
-      constraint_rows(k, c);
+      constraint_rows(k, s.t, c);
       positive = factorize(c) && positive;
     }
     correct_positions(c, s);
@@ -725,9 +744,9 @@ mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, c);
+  constraint_rows(k, s.t, c);
   const Rows phi = stacked_phi(c);
-  const Rows phi_dot = jacobian_times(c, generalized_velocities(s));
+  const Rows phi_dot = velocity_residual(c, generalized_velocities(s));
   if (kConstraintRows == 0) return {0.0, 0.0};
   return {phi.cwiseAbs().maxCoeff(), phi_dot.cwiseAbs().maxCoeff()};
 }
@@ -744,7 +763,7 @@ double quaternion_norm_error(const State& s) noexcept {
   std::string source() const {
     std::ostringstream o;
     o << "// mbrt generated model '" << m_.name << "': " << m_.bodies.size() << " bodies (" << a_.rigid_count
-      << " rigid, " << a_.particle_count << " particles), " << m_.joints.size() << " joints, " << a_.constraint_rows
+      << " rigid, " << a_.particle_count << " particles), " << m_.joints.size() << " joints, " << m_.drivers.size() << " drivers, " << a_.constraint_rows
       << " constraint rows.\n"
       << "// Scheme " << m_.solver.scheme << ". Stage order per step: explicit_stage -> kinematics ->\n"
       << "// constraint_rows -> factorize -> (applied_loads -> implicit stage) x kStages"

@@ -36,27 +36,18 @@ void apply_overrides(Model& model, const GenerateOptions& options) {
   }
 }
 
-std::string joint_label(const Model& model, int index) {
-  const Joint& j = model.joints[static_cast<size_t>(index)];
-  return "joint '" + j.name + "'";
-}
-
 void check_initial_state(const Model& model, const Analysis& analysis) {
   const InitialResidual r = initial_residual(model, analysis);
-  if (r.position > kInitialTolerance) {
-    const Joint& j = model.joints[static_cast<size_t>(r.position_joint)];
+  const auto report = [&](int block, double residual, const char* level, const char* what) {
+    const ConstraintBlock& b = analysis.constraints[static_cast<size_t>(block)];
     std::ostringstream m;
-    m << "initial positions violate " << joint_label(model, r.position_joint) << " by " << r.position
-      << " (tolerance " << kInitialTolerance << "); fix the positions or pass --project-initial";
-    throw ModelError(j.where, "joints", m.str());
-  }
-  if (r.velocity > kInitialTolerance) {
-    const Joint& j = model.joints[static_cast<size_t>(r.velocity_joint)];
-    std::ostringstream m;
-    m << "initial velocities violate " << joint_label(model, r.velocity_joint) << " by " << r.velocity
-      << " (tolerance " << kInitialTolerance << "); fix the velocities or pass --project-initial";
-    throw ModelError(j.where, "joints", m.str());
-  }
+    m << "initial " << level << " violate " << (b.kernel.find("driver") == std::string::npos ? "joint" : "driver")
+      << " '" << b.name << "' by " << residual << " (tolerance " << kInitialTolerance << "); fix the " << what
+      << " or pass --project-initial";
+    throw ModelError(b.where, b.kernel.find("driver") == std::string::npos ? "joints" : "drivers", m.str());
+  };
+  if (r.position > kInitialTolerance) report(r.position_block, r.position, "positions", "positions");
+  if (r.velocity > kInitialTolerance) report(r.velocity_block, r.velocity, "velocities", "velocities");
 }
 
 }  // namespace

@@ -8,9 +8,10 @@ namespace mbrt::codegen {
 
 namespace {
 
-int joint_of_row(const Analysis& a, Eigen::Index row) {
-  for (const JointPlan& j : a.joints) {
-    if (row >= j.first_row && row < j.first_row + j.rows) return j.model_index;
+int block_of_row(const Analysis& a, Eigen::Index row) {
+  for (size_t i = 0; i < a.constraints.size(); ++i) {
+    const ConstraintBlock& b = a.constraints[i];
+    if (row >= b.first_row && row < b.first_row + b.rows) return static_cast<int>(i);
   }
   return -1;
 }
@@ -26,12 +27,12 @@ Eigen::VectorXd correction(const StackedConstraints& c, const Eigen::MatrixXd& m
 InitialResidual initial_residual(const Model& model, const Analysis& analysis) {
   InitialResidual r;
   if (analysis.constraint_rows == 0) return r;
-  const StackedConstraints c = evaluate_constraints(model, analysis.joints);
+  const StackedConstraints c = evaluate_constraints(model, analysis.constraints, 0.0);
   Eigen::Index row;
   r.position = c.phi.cwiseAbs().maxCoeff(&row);
-  r.position_joint = joint_of_row(analysis, row);
+  r.position_block = block_of_row(analysis, row);
   r.velocity = c.phi_dot.cwiseAbs().maxCoeff(&row);
-  r.velocity_joint = joint_of_row(analysis, row);
+  r.velocity_block = block_of_row(analysis, row);
   return r;
 }
 
@@ -41,7 +42,7 @@ void project_initial_state(Model& model, const Analysis& analysis) {
   const int max_iterations = 50;
   int iteration = 0;
   for (;; ++iteration) {
-    const StackedConstraints c = evaluate_constraints(model, analysis.joints);
+    const StackedConstraints c = evaluate_constraints(model, analysis.constraints, 0.0);
     if (c.phi.cwiseAbs().maxCoeff() < 1e-13) break;
     if (iteration == max_iterations) {
       throw ModelError({model.file, 0, 0}, "--project-initial",
@@ -59,7 +60,7 @@ void project_initial_state(Model& model, const Analysis& analysis) {
       }
     }
   }
-  const StackedConstraints c = evaluate_constraints(model, analysis.joints);
+  const StackedConstraints c = evaluate_constraints(model, analysis.constraints, 0.0);
   const Eigen::VectorXd du = correction(c, m_inv, c.phi_dot);
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     Body& b = model.bodies[i];

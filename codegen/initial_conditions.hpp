@@ -8,9 +8,9 @@ namespace mbrt::codegen {
 
 struct InitialResidual {
   double position = 0.0;    // max |phi|
-  int position_joint = -1;  // Model::joints index of the worst row, -1 if none
+  int position_block = -1;  // Analysis::constraints index of the worst row, -1 if none
   double velocity = 0.0;    // max |phi_dot|
-  int velocity_joint = -1;
+  int velocity_block = -1;
 };
 
 // Residuals larger than this are reported as inconsistent initial conditions.

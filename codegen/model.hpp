@@ -46,7 +46,7 @@ struct Body {
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // body axes
 };
 
-enum class JointType { spherical, revolute, universal, cylindrical, prismatic, fixed, distance };
+enum class JointType { spherical, revolute, universal, cylindrical, prismatic, fixed, distance, screw, planar };
 
 struct Joint {
   std::string name;
@@ -55,12 +55,38 @@ struct Joint {
   int body1 = kGround;
   int body2 = kGround;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();   // world, t = 0 (all but distance)
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // unit, world (revolute, cylindrical, prismatic)
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // unit, world (revolute, cylindrical, prismatic, screw; planar: normal)
   Eigen::Vector3d axis1 = Eigen::Vector3d::UnitX();  // unit, world (universal, fixed in body 1)
   Eigen::Vector3d axis2 = Eigen::Vector3d::UnitY();  // unit, world (universal, fixed in body 2)
   Eigen::Vector3d point1 = Eigen::Vector3d::Zero();  // world (distance)
   Eigen::Vector3d point2 = Eigen::Vector3d::Zero();  // world (distance)
   double length = 0.0;                               // distance: given, or |point2 - point1|
+  double lead = 0.0;                                 // screw: translation per turn along +axis, m (non-zero)
+};
+
+// f(t) of a driver: a polynomial sum c[k] t^k, or offset + amplitude sin(omega t + phase).
+struct TimeFunction {
+  bool is_sine = false;
+  std::vector<double> polynomial;
+  double amplitude = 0.0, omega = 0.0, phase = 0.0, offset = 0.0;
+};
+
+// Rheonomic constraints: joint_angle (revolute, cylindrical: angle about the
+// axis from t = 0, rad), joint_distance (prismatic, cylindrical: slide along
+// the axis from t = 0, m), distance (between point1 of body1 and point2 of
+// body2, m).
+enum class DriverType { joint_angle, joint_distance, distance };
+
+struct Driver {
+  std::string name;
+  SourceLocation where;
+  DriverType type = DriverType::joint_angle;
+  int joint = -1;       // joint_angle, joint_distance: Model::joints index
+  int body1 = kGround;  // distance
+  int body2 = kGround;
+  Eigen::Vector3d point1 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point2 = Eigen::Vector3d::Zero();
+  TimeFunction function;
 };
 
 enum class ForceType { spring_damper, torque, force };
@@ -106,6 +132,7 @@ struct Model {
   std::vector<Body> bodies;  // "ground" is not listed; it is kGround
   std::vector<Joint> joints;
   std::vector<Force> forces;
+  std::vector<Driver> drivers;
   SolverSettings solver;
 
   const std::string& body_name(int index) const;  // "ground" for kGround

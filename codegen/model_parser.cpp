@@ -26,13 +26,16 @@ namespace {
 
 using Keys = std::vector<std::string>;
 
-const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "solver"};
+const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers", "solver"};
 const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
                         "orientation", "velocity", "angular_velocity"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
 // Keys of every joint / force type; each type then takes a subset.
 const Keys kJointKeys = {"name", "type", "body1", "body2", "point", "axis",
-                         "axis1", "axis2", "point1", "point2", "length"};
+                         "axis1", "axis2", "point1", "point2", "length", "lead"};
+const Keys kDriverKeys = {"name", "type", "joint", "body1", "body2", "point1", "point2", "function"};
+const Keys kFunctionKeys = {"polynomial", "sine"};
+const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
 const Keys kForceKeys = {"type", "body1", "body2", "point1", "point2", "stiffness", "damping",
                          "rest_length", "axis", "value", "body", "point", "vector"};
 const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
@@ -42,7 +45,12 @@ const std::vector<std::pair<std::string, JointType>> kJointTypes = {
     {"spherical", JointType::spherical},     {"revolute", JointType::revolute},
     {"universal", JointType::universal},     {"cylindrical", JointType::cylindrical},
     {"prismatic", JointType::prismatic},     {"fixed", JointType::fixed},
-    {"distance", JointType::distance}};
+    {"distance", JointType::distance},       {"screw", JointType::screw},
+    {"planar", JointType::planar}};
+const std::vector<std::pair<std::string, DriverType>> kDriverTypes = {
+    {"joint_angle", DriverType::joint_angle},
+    {"joint_distance", DriverType::joint_distance},
+    {"distance", DriverType::distance}};
 const std::vector<std::pair<std::string, ForceType>> kForceTypes = {
     {"spring_damper", ForceType::spring_damper},
     {"torque", ForceType::torque},
@@ -429,7 +437,9 @@ Keys joint_keys(JointType type) {
   switch (type) {
     case JointType::revolute:
     case JointType::cylindrical:
-    case JointType::prismatic: keys.insert(keys.end(), {"point", "axis"}); break;
+    case JointType::prismatic:
+    case JointType::planar: keys.insert(keys.end(), {"point", "axis"}); break;
+    case JointType::screw: keys.insert(keys.end(), {"point", "axis", "lead"}); break;
     case JointType::universal: keys.insert(keys.end(), {"point", "axis1", "axis2"}); break;
     case JointType::distance: keys.insert(keys.end(), {"point1", "point2", "length"}); break;
     case JointType::spherical:
@@ -461,9 +471,18 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
     case JointType::revolute:
     case JointType::cylindrical:
     case JointType::prismatic:
+    case JointType::planar:
       j.point = read_vector3(s.get("point"));
       j.axis = read_axis(s.get("axis"));
       break;
+    case JointType::screw: {
+      j.point = read_vector3(s.get("point"));
+      j.axis = read_axis(s.get("axis"));
+      const Value lead = s.get("lead");
+      j.lead = read_number(lead);
+      if (!(std::abs(j.lead) > 0.0)) fail_expected(lead, "a non-zero lead (m per turn)");
+      break;
+    }
     case JointType::universal: {
       j.point = read_vector3(s.get("point"));
       j.axis1 = read_axis(s.get("axis1"));
@@ -551,6 +570,70 @@ Force parse_force(const Value& item, const Model& model) {
   return f;
 }
 
+TimeFunction parse_function(const Value& v) {
+  const Section s(v, kFunctionKeys);
+  TimeFunction f;
+  const auto poly = s.find("polynomial");
+  const auto sine = s.find("sine");
+  if (poly.has_value() == sine.has_value()) fail_expected(v, "exactly one of: polynomial, sine");
+  if (poly) {
+    if (!poly->node.IsSequence() || poly->node.size() == 0) fail_expected(*poly, "a non-empty list of coefficients c0, c1, ...");
+    for (std::size_t i = 0; i < poly->node.size(); ++i) f.polynomial.push_back(read_number(element(*poly, i)));
+    return f;
+  }
+  const Section p(*sine, kSineKeys);
+  f.is_sine = true;
+  f.amplitude = read_number(p.get("amplitude"));
+  f.omega = read_number(p.get("omega"));
+  if (auto x = p.find("phase")) f.phase = read_number(*x);
+  if (auto x = p.find("offset")) f.offset = read_number(*x);
+  return f;
+}
+
+Driver parse_driver(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
+  const Section s(item, kDriverKeys);
+  Driver d;
+  d.where = item.where;
+  const Value name = s.get("name");
+  d.name = read_identifier(name);
+  for (const Joint& j : model.joints) {
+    if (j.name == d.name) fail(name, "the name '" + d.name + "' is already used by a joint");
+  }
+  check_unique(name, d.name, "driver", names_seen);
+  const Value type = s.get("type");
+  d.type = read_type(type, kDriverTypes);
+  if (d.type == DriverType::distance) {
+    s.restrict_to({"name", "type", "body1", "body2", "point1", "point2", "function"}, "a distance driver");
+    d.body1 = read_body_ref(s.get("body1"), model);
+    const Value body2 = s.get("body2");
+    d.body2 = read_body_ref(body2, model);
+    if (d.body1 == d.body2) fail(body2, "a driver must connect two different bodies");
+    d.point1 = read_vector3(s.get("point1"));
+    const Value point2 = s.get("point2");
+    d.point2 = read_vector3(point2);
+    if (!((d.point2 - d.point1).norm() > 0.0)) fail(point2, "point1 and point2 coincide: the distance has no direction");
+  } else {
+    s.restrict_to({"name", "type", "joint", "function"}, "a " + type.node.Scalar() + " driver");
+    const Value joint = s.get("joint");
+    const std::string joint_name = read_string(joint, "a joint name");
+    for (std::size_t i = 0; i < model.joints.size(); ++i) {
+      if (model.joints[i].name == joint_name) d.joint = static_cast<int>(i);
+    }
+    if (d.joint < 0) fail(joint, "unknown joint '" + joint_name + "'");
+    const JointType jt = model.joints[static_cast<std::size_t>(d.joint)].type;
+    const bool angle_ok = jt == JointType::revolute || jt == JointType::cylindrical;
+    const bool slide_ok = jt == JointType::prismatic || jt == JointType::cylindrical;
+    if (d.type == DriverType::joint_angle && !angle_ok) {
+      fail(joint, "a joint_angle driver needs a revolute or cylindrical joint; '" + joint_name + "' is not one");
+    }
+    if (d.type == DriverType::joint_distance && !slide_ok) {
+      fail(joint, "a joint_distance driver needs a prismatic or cylindrical joint; '" + joint_name + "' is not one");
+    }
+  }
+  d.function = parse_function(s.get("function"));
+  return d;
+}
+
 SolverSettings parse_solver(const Value& v) {
   SolverSettings solver;
   if (v.node.IsNull()) return solver;  // "solver:" with nothing under it: defaults
@@ -599,6 +682,13 @@ Model build_model(const YAML::Node& root, const std::string& file) {
   if (auto forces = s.find("forces"); forces && !is_empty_or_list(*forces, "a list of forces")) {
     for (std::size_t i = 0; i < forces->node.size(); ++i) {
       model.forces.push_back(parse_force(element(*forces, i), model));
+    }
+  }
+
+  if (auto drivers = s.find("drivers"); drivers && !is_empty_or_list(*drivers, "a list of drivers")) {
+    std::map<std::string, int> driver_names;
+    for (std::size_t i = 0; i < drivers->node.size(); ++i) {
+      model.drivers.push_back(parse_driver(element(*drivers, i), model, driver_names));
     }
   }
 

@@ -76,7 +76,7 @@ joints:
 )",
                               "tilted.yaml");
   const Analysis an = analyse(m);
-  const mbrt::JointFrame& f = an.joints[0].frame;
+  const mbrt::JointFrame& f = an.constraints[0].frame;
   const Eigen::Matrix3d R1 = mbrt::rotation_matrix(m.bodies[0].orientation);
   const Eigen::Matrix3d R2 = mbrt::rotation_matrix(m.bodies[1].orientation);
   const Eigen::Vector3d point(1.5, 2.5, 3);

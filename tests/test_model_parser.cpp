@@ -300,7 +300,7 @@ bodies:
 gravty: [0, 0, -9.81]
 )",
                     "gravty", 4,
-                    "unknown key 'gravty' (expected one of: name, gravity, bodies, joints, forces, solver)");
+                    "unknown key 'gravty' (expected one of: name, gravity, bodies, joints, forces, drivers, solver)");
 }
 
 TEST_CASE("an unknown key in a body is rejected with its line") {
@@ -736,7 +736,7 @@ joints:
 )",
                     "joints[0].type", 6,
                     "expected one of: spherical, revolute, universal, cylindrical, prismatic, fixed, "
-                    "distance, got 'hinge'");
+                    "distance, screw, planar, got 'hinge'");
 }
 
 TEST_CASE("a zero-length axis is rejected") {

@@ -1,10 +1,13 @@
 // Constraint kernels: value, Jacobian with respect to u = [v; w_body] of each
-// body, and the quadratic velocity term, so that
-//   phi_dot  = J1 u1 + J2 u2
+// body, the explicit time derivative (drivers only) and the remaining
+// acceleration terms, so that
+//   phi_dot  = J1 u1 + J2 u2 + phi_t
 //   phi_ddot = J1 u1' + J2 u2' + quad.
 // Every joint is built from three primitives: a point fixed in a body, a unit
 // vector fixed in a body, and scalar products of their differences.
 #pragma once
+
+#include <cmath>
 
 #include "mbrt/body_state.hpp"
 
@@ -16,6 +19,7 @@ struct ConstraintRows {
   Eigen::Matrix<double, N, 6> J1;
   Eigen::Matrix<double, N, 6> J2;
   Eigen::Matrix<double, N, 1> quad;
+  Eigen::Matrix<double, N, 1> phi_t = Eigen::Matrix<double, N, 1>::Zero();
 };
 
 // A world vector carried by a body (a point or a direction) with its first
@@ -85,6 +89,34 @@ inline ScalarRow normal_dot_difference_row(const CarriedVector& n, const Carried
   return {n.x.dot(d.x), d.x.transpose() * n.J + n.x.transpose() * d.J1, n.x.transpose() * d.J2,
           n.quad.dot(d.x) + 2.0 * n.x_dot.dot(d.x_dot) + n.x.dot(d.quad)};
 }
+
+// Row: the angle theta of body 2 about the axis a of body 1, measured from
+// the triad (a, b, c) at t = 0 (cos theta = b1 . b2, sin theta = c1 . b2).
+// theta' = a . (omega2 - omega1) in world axes; theta'' adds (omega1 x a) . omega2.
+// phi is returned as theta only through wrap(): the caller subtracts the
+// target angle and wraps, so multi-turn motion has no jump.
+struct AngleRow {
+  double theta;  // in (-pi, pi]
+  Eigen::Matrix<double, 1, 6> J1;
+  Eigen::Matrix<double, 1, 6> J2;
+  double quad;
+};
+
+inline AngleRow relative_angle_row(const BodyPose& p1, const BodyVelocity& v1, const Vec3& a1, const Vec3& b1,
+                                   const Vec3& c1, const BodyPose& p2, const BodyVelocity& v2, const Vec3& b2) noexcept {
+  const Vec3 a = p1.R * a1;
+  const Vec3 b2w = p2.R * b2;
+  AngleRow r;
+  r.theta = std::atan2((p1.R * c1).dot(b2w), (p1.R * b1).dot(b2w));
+  r.J1 << 0.0, 0.0, 0.0, -a1.transpose();
+  r.J2 << 0.0, 0.0, 0.0, (p2.R.transpose() * a).transpose();
+  const Vec3 omega1 = p1.R * v1.w, omega2 = p2.R * v2.w;
+  r.quad = omega1.cross(a).dot(omega2);
+  return r;
+}
+
+// Angle difference wrapped to (-pi, pi].
+inline double wrap_angle(double x) noexcept { return std::remainder(x, 2.0 * 3.14159265358979323846); }
 
 template <int N>
 inline void set_row(ConstraintRows<N>& rows, int i, const ScalarRow& r) noexcept {

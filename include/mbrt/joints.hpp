@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mbrt/constraint_kernels.hpp"
+#include "mbrt/time_functions.hpp"
 
 namespace mbrt {
 
@@ -15,6 +16,7 @@ struct JointFrame {
   Vec3 a1, b1, c1;
   Vec3 a2, b2, c2;
   double length;     // distance joints only
+  double pitch;      // screw joints: translation per radian (lead / 2 pi)
 };
 
 struct BodyMotion {
@@ -102,6 +104,69 @@ inline ConstraintRows<6> fixed(const JointFrame& f, const BodyMotion& m1, const 
   detail::add_dot_row(rows, 4, a1, c2);
   detail::add_dot_row(rows, 5, carried_direction(m1.pose, m1.vel, f.b1), c2);
   return rows;
+}
+
+// Screw: cylindrical plus translation along the axis = pitch x rotation
+// about it (seed 004), phi = pitch wrap(d_a / pitch - theta), which is
+// d_a - pitch theta on the branch nearest the current translation (5 rows).
+inline ConstraintRows<5> screw(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  ConstraintRows<5> rows;
+  detail::cylindrical_rows(f, m1, m2, rows);
+  const ScalarRow slide = normal_dot_difference_row(carried_direction(m1.pose, m1.vel, f.a1), detail::joint_points(f, m1, m2));
+  const AngleRow turn = relative_angle_row(m1.pose, m1.vel, f.a1, f.b1, f.c1, m2.pose, m2.vel, f.b2);
+  set_row(rows, 4,
+          {f.pitch * wrap_angle(slide.phi / f.pitch - turn.theta), slide.J1 - f.pitch * turn.J1,
+           slide.J2 - f.pitch * turn.J2, slide.quad - f.pitch * turn.quad});
+  return rows;
+}
+
+// Planar: body 2 keeps the plane through the joint point with normal a of
+// body 1, and turns only about a (3 rows).
+inline ConstraintRows<3> planar(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  ConstraintRows<3> rows;
+  const CarriedVector a1 = carried_direction(m1.pose, m1.vel, f.a1);
+  detail::add_dot_row(rows, 0, a1, carried_direction(m2.pose, m2.vel, f.b2));
+  detail::add_dot_row(rows, 1, a1, carried_direction(m2.pose, m2.vel, f.c2));
+  detail::add_plane_row(rows, 2, a1, detail::joint_points(f, m1, m2));
+  return rows;
+}
+
+// Drivers: one rheonomic row each, phi(q) - f(t) = 0, so phi_t = -f' and
+// quad gains -f''.
+namespace detail {
+inline ConstraintRows<1> driven(const ScalarRow& r, const TimeValue& f) noexcept {
+  ConstraintRows<1> rows;
+  set_row(rows, 0, {r.phi, r.J1, r.J2, r.quad - f.ddf});
+  rows.phi_t[0] = -f.df;
+  return rows;
+}
+}  // namespace detail
+
+// Prescribed angle of body 2 about the joint axis of body 1, from t = 0.
+inline ConstraintRows<1> joint_angle_driver(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2,
+                                            const TimeValue& target) noexcept {
+  const AngleRow turn = relative_angle_row(m1.pose, m1.vel, f.a1, f.b1, f.c1, m2.pose, m2.vel, f.b2);
+  return detail::driven({wrap_angle(turn.theta - target.f), turn.J1, turn.J2, turn.quad}, target);
+}
+
+// Prescribed displacement of the joint point of body 2 along the axis of body 1, from t = 0.
+inline ConstraintRows<1> joint_distance_driver(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2,
+                                               const TimeValue& target) noexcept {
+  ScalarRow r = normal_dot_difference_row(carried_direction(m1.pose, m1.vel, f.a1), detail::joint_points(f, m1, m2));
+  r.phi -= target.f;
+  return detail::driven(r, target);
+}
+
+// Prescribed distance |x2 - x1| between a point of each body.
+inline ConstraintRows<1> distance_driver(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2,
+                                         const TimeValue& target) noexcept {
+  const CarriedDifference d = detail::joint_points(f, m1, m2);
+  const double l = d.x.norm();
+  const Vec3 n = d.x / l;
+  const double along = n.dot(d.x_dot);
+  return detail::driven({l - target.f, n.transpose() * d.J1, n.transpose() * d.J2,
+                         (d.x_dot.squaredNorm() - along * along) / l + n.dot(d.quad)},
+                        target);
 }
 
 // Distance: (|x2 - x1|^2 - L^2) / (2 L) = 0, which has units of length and

@@ -12,9 +12,9 @@ struct BodyInfo {
   int slot;  // index in State::rigid or State::particle
 };
 
-struct JointInfo {
+struct ConstraintInfo {  // a joint or a driver
   const char* name;
-  const char* type;
+  const char* type;  // runtime kernel: "revolute", "joint_angle_driver", ...
   int first_row;
   int rows;
 };
