@@ -436,10 +436,10 @@ class Emitter {
       << "// (c) => (phi), (c) => (quad): stacked position residuals and acceleration terms.\n";
     stacked(o, "phi");
     stacked(o, "quad");
+    if (a_.rheonomic) stacked(o, "phi_t");
     o << "// (c, u) => (phi_dot = B u + phi_t): velocity residuals.\n"
       << "Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n";
     if (a_.rheonomic) {
-      stacked(o, "phi_t");
       o << "  return jacobian_times(c, u) + stacked_phi_t(c);\n}\n\n";
     } else {
       o << "  return jacobian_times(c, u);  // no drivers: phi_t = 0\n}\n\n";
