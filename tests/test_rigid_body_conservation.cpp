@@ -7,6 +7,7 @@
 
 #include "free_body.hpp"
 #include "heavy_top.hpp"
+#include "reference_solutions.hpp"
 
 namespace top = mbrt::models::heavy_top;
 namespace free_body = mbrt::models::free_body;
@@ -48,16 +49,11 @@ TEST_CASE("heavy top: energy, vertical angular momentum, spin and |p| are held o
 }
 
 TEST_CASE("heavy top follows the closed-form height of its centre of mass") {
-  // z_COM(t) from u'^2 = f(u) of the Lagrange top for these data (nutation
-  // period 0.7452069476 s); independent of any integrator.
-  const struct { double t, z; } closed_form[] = {{0.05, -0.038355180}, {0.1, -0.149164701}, {0.2, -0.523983027},
-                                                 {0.3, -0.897531991}, {0.5, -0.711400258}, {1.0, -0.748490791},
-                                                 {1.5, -0.001422084}, {2.0, -0.673022270}};
   top::State s = top::initial_state();
   long done = 0;
-  for (const auto& c : closed_form) {
+  for (const reference::TimedValue& c : reference::kHeavyTopHeight) {
     for (; done < std::lround(c.t / top::kStep); ++done) top::step(s);
-    CHECK(std::abs(s.rigid[0].r.z() - c.z) < 5e-6);
+    CHECK(std::abs(s.rigid[0].r.z() - c.value) < 5e-6);
   }
 }
 

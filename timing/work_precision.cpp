@@ -13,39 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "reference_solutions.hpp"
 #include "work_precision_variants.hpp"
 
 namespace {
 
-constexpr double kA01End = 20.0;
-
-// A01 reference: phi'' = -g cos(phi), phi(0) = pi, RK4 at 1e-5 s.
-std::vector<mbrt::Vec3> a01_reference() {
-  std::vector<mbrt::Vec3> out;
-  double phi = M_PI, rate = 0.0;
-  const double h = 1e-5;
-  const auto acc = [](double a) { return -9.81 * std::cos(a); };
-  for (int sample = 1; sample <= 40; ++sample) {
-    for (int i = 0; i < 50000; ++i) {
-      const double k1p = rate, k1v = acc(phi);
-      const double k2p = rate + 0.5 * h * k1v, k2v = acc(phi + 0.5 * h * k1p);
-      const double k3p = rate + 0.5 * h * k2v, k3v = acc(phi + 0.5 * h * k2p);
-      const double k4p = rate + h * k3v, k4v = acc(phi + h * k3p);
-      phi += h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p);
-      rate += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-    }
-    out.emplace_back(std::cos(phi), std::sin(phi), 0.0);
-  }
-  return out;
-}
-
-// Heavy top: z_COM(t) of the Lagrange top for the benchmark data, from
-// u'^2 = f(u) (derived closed form; see tests/test_rigid_body_conservation.cpp).
-struct Sample {
-  double t, z;
-};
-const Sample kTop[] = {{0.05, -0.038355180}, {0.1, -0.149164701}, {0.2, -0.523983027}, {0.3, -0.897531991},
-                       {0.5, -0.711400258},  {1.0, -0.748490791}, {1.5, -0.001422084}, {2.0, -0.673022270}};
+// A01 to 20 s, sampled every 0.5 s; RK4 reference at 1e-5 s.
+const std::vector<mbrt::Vec3> kA01 = reference::a01_bob_positions(20.0, 0.5, 1e-5);
 
 struct Result {
   std::string problem, name, scheme;
@@ -56,19 +30,19 @@ struct Result {
 using Clock = std::chrono::steady_clock;
 
 template <class Model>
-Result run_a01(const char* name, const std::vector<mbrt::Vec3>& ref) {
+Result run_a01(const char* name) {
   typename Model::State s = Model::initial_state();
   Result r{"a01", name, Model::kScheme, Model::kStep};
   double stepping = 0;
-  for (size_t k = 0; k < ref.size(); ++k) {
-    const double t = 0.5 * static_cast<double>(k + 1);
+  for (size_t k = 1; k < kA01.size(); ++k) {
+    const double t = 0.5 * static_cast<double>(k);
     const auto t0 = Clock::now();
     while (s.t < t - 0.5 * Model::kStep) {
       Model::step(s);
       ++r.steps;
     }
     stepping += std::chrono::duration<double>(Clock::now() - t0).count();
-    r.error = std::max(r.error, (s.particle[0].r - ref[k]).norm());
+    r.error = std::max(r.error, (s.particle[0].r - kA01[k]).norm());
   }
   r.best_s = stepping;
   return r;
@@ -79,14 +53,14 @@ Result run_top(const char* name) {
   typename Model::State s = Model::initial_state();
   Result r{"heavy_top", name, Model::kScheme, Model::kStep};
   double stepping = 0;
-  for (const Sample& c : kTop) {
+  for (const reference::TimedValue& c : reference::kHeavyTopHeight) {
     const auto t0 = Clock::now();
     while (s.t < c.t - 0.5 * Model::kStep) {
       Model::step(s);
       ++r.steps;
     }
     stepping += std::chrono::duration<double>(Clock::now() - t0).count();
-    r.error = std::max(r.error, std::abs(s.rigid[0].r.z() - c.z));
+    r.error = std::max(r.error, std::abs(s.rigid[0].r.z() - c.value));
   }
   r.best_s = stepping;
   return r;
@@ -107,12 +81,11 @@ MBRT_VARIANTS(MBRT_ADAPT)
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-  const std::vector<mbrt::Vec3> ref = a01_reference();
   std::vector<Result> best;
   for (int rep = 0; rep < repeats; ++rep) {
     std::vector<Result> round;
 #define MBRT_RUN(problem, ns)                                                                   \
-  round.push_back(std::string(#problem) == "a01" ? run_a01<ns##_model>(#ns, ref) : run_top<ns##_model>(#ns));
+  round.push_back(std::string(#problem) == "a01" ? run_a01<ns##_model>(#ns) : run_top<ns##_model>(#ns));
     MBRT_VARIANTS(MBRT_RUN)
 #undef MBRT_RUN
     if (best.empty()) best = round;
