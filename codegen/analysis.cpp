@@ -42,13 +42,7 @@ const char* joint_type_name(JointType type) {
 
 mbrt::TimeValue evaluate(const TimeFunction& f, double t) {
   if (f.is_sine) return mbrt::sine({f.amplitude, f.omega, f.phase, f.offset}, t);
-  mbrt::TimeValue v{0.0, 0.0, 0.0};
-  for (size_t k = f.polynomial.size(); k-- > 0;) {
-    v.ddf = v.ddf * t + 2.0 * v.df;
-    v.df = v.df * t + v.f;
-    v.f = v.f * t + f.polynomial[k];
-  }
-  return v;
+  return mbrt::polynomial(f.polynomial.data(), f.polynomial.size(), t);
 }
 
 namespace {

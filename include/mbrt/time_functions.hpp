@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 
 namespace mbrt {
 
@@ -13,16 +14,20 @@ struct TimeValue {
   double ddf;
 };
 
-// f(t) = c[0] + c[1] t + ... + c[N-1] t^(N-1), by Horner's rule.
-template <size_t N>
-inline TimeValue polynomial(const std::array<double, N>& c, double t) noexcept {
+// f(t) = c[0] + c[1] t + ... + c[n-1] t^(n-1), by Horner's rule.
+inline TimeValue polynomial(const double* c, size_t n, double t) noexcept {
   TimeValue v{0.0, 0.0, 0.0};
-  for (size_t k = N; k-- > 0;) {
+  for (size_t k = n; k-- > 0;) {
     v.ddf = v.ddf * t + 2.0 * v.df;
     v.df = v.df * t + v.f;
     v.f = v.f * t + c[k];
   }
   return v;
+}
+
+template <size_t N>
+inline TimeValue polynomial(const std::array<double, N>& c, double t) noexcept {
+  return polynomial(c.data(), N, t);
 }
 
 // f(t) = offset + amplitude sin(omega t + phase).
