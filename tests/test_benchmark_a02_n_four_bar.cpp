@@ -29,6 +29,7 @@
 #include "a02_n40_baumgarte.hpp"
 #include "a02_n40_blajer.hpp"
 #include "a02_n40_pcst.hpp"
+#include "model_adapter.hpp"
 
 namespace {
 
@@ -36,22 +37,6 @@ constexpr int kN = 40;
 constexpr double kG = 9.81;
 constexpr double kSample = 0.05;  // s, the published table's spacing
 constexpr double kEnd = 20.0;
-
-#define BENCH_MODEL(Tag, ns)                                                                                         \
-  struct Tag {                                                                                                       \
-    using State = mbrt::models::ns::State;                                                                           \
-    static constexpr double kStep = mbrt::models::ns::kStep;                                                         \
-    static constexpr const char* kScheme = mbrt::models::ns::kScheme;                                                \
-    static State initial_state() { return mbrt::models::ns::initial_state(); }                                       \
-    static mbrt::StepStatus step(State& s) { return mbrt::models::ns::step(s); }                                     \
-    static mbrt::Energy energy(const State& s) { return mbrt::models::ns::energy(s); }                               \
-    static mbrt::ConstraintViolation violation(const State& s) { return mbrt::models::ns::constraint_violation(s); } \
-    static int slot(std::string_view name) {                                                                         \
-      for (const auto& b : mbrt::models::ns::kBodyInfo)                                                              \
-        if (name == b.name) return b.slot;                                                                           \
-      return -1;                                                                                                     \
-    }                                                                                                                \
-  }
 
 BENCH_MODEL(Pcst, a02_n40_pcst);
 BENCH_MODEL(Baumgarte, a02_n40_baumgarte);

@@ -27,24 +27,9 @@
 #include "flyball_baumgarte.hpp"
 #include "flyball_blajer.hpp"
 #include "flyball_pcst.hpp"
+#include "model_adapter.hpp"
 
 namespace {
-
-#define BENCH_MODEL(Tag, ns)                                                                                         \
-  struct Tag {                                                                                                       \
-    using State = mbrt::models::ns::State;                                                                           \
-    static constexpr double kStep = mbrt::models::ns::kStep;                                                         \
-    static constexpr const char* kScheme = mbrt::models::ns::kScheme;                                                \
-    static State initial_state() { return mbrt::models::ns::initial_state(); }                                       \
-    static mbrt::StepStatus step(State& s) { return mbrt::models::ns::step(s); }                                     \
-    static mbrt::Energy energy(const State& s) { return mbrt::models::ns::energy(s); }                               \
-    static mbrt::ConstraintViolation violation(const State& s) { return mbrt::models::ns::constraint_violation(s); } \
-    static int slot(std::string_view name) {                                                                         \
-      for (const auto& b : mbrt::models::ns::kBodyInfo)                                                              \
-        if (name == b.name) return b.slot;                                                                           \
-      return -1;                                                                                                     \
-    }                                                                                                                \
-  }
 
 BENCH_MODEL(Pcst, flyball_pcst);
 BENCH_MODEL(Baumgarte, flyball_baumgarte);

@@ -1,0 +1,24 @@
+// Adapts a generated model's namespace to a type, so the benchmark tests can
+// run every scheme's variant of a model through one template:
+//   BENCH_MODEL(Pcst, a02_n40_pcst);  then  Pcst::step(s), Pcst::slot("crank0") ...
+#pragma once
+
+#include <string_view>
+
+#include <mbrt/model_api.hpp>
+
+#define BENCH_MODEL(Tag, ns)                                                                                         \
+  struct Tag {                                                                                                       \
+    using State = mbrt::models::ns::State;                                                                           \
+    static constexpr double kStep = mbrt::models::ns::kStep;                                                         \
+    static constexpr const char* kScheme = mbrt::models::ns::kScheme;                                                \
+    static State initial_state() { return mbrt::models::ns::initial_state(); }                                       \
+    static mbrt::StepStatus step(State& s) { return mbrt::models::ns::step(s); }                                     \
+    static mbrt::Energy energy(const State& s) { return mbrt::models::ns::energy(s); }                               \
+    static mbrt::ConstraintViolation violation(const State& s) { return mbrt::models::ns::constraint_violation(s); } \
+    static int slot(std::string_view name) {                                                                         \
+      for (const auto& b : mbrt::models::ns::kBodyInfo)                                                              \
+        if (name == b.name) return b.slot;                                                                           \
+      return -1;                                                                                                     \
+    }                                                                                                                \
+  }
