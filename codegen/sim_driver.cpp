@@ -84,6 +84,14 @@ void write_row(std::FILE* f, const model::State& s, bool velocities) {
   std::fprintf(f, "\n");
 }
 
+// A JSON number; JSON has no NaN or Inf, so a blown-up value becomes null.
+std::string json_number(double x) {
+  if (!std::isfinite(x)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -132,9 +140,10 @@ int main(int argc, char** argv) {
   const double wall_s = std::chrono::duration<double>(clock::now() - started).count();
   std::printf(
       "{\"model\": \"%s\", \"scheme\": \"%s\", \"h\": %.17g, \"steps\": %ld, \"wall_s\": %.6g, \"ns_per_step\": %.6g, "
-      "\"max_position_violation\": %.6g, \"max_velocity_violation\": %.6g, \"max_quat_norm_error\": %.6g, "
-      "\"energy_initial\": %.17g, \"energy_final\": %.17g, \"status\": \"%s\"}\n",
-      model::kName, model::kScheme, model::kStep, done, wall_s, done ? 1e9 * stepping_s / done : 0.0, max_pos,
-      max_vel, max_quat, e0, model::energy(s).total(), mbrt::to_string(status));
+      "\"max_position_violation\": %s, \"max_velocity_violation\": %s, \"max_quat_norm_error\": %s, "
+      "\"energy_initial\": %s, \"energy_final\": %s, \"status\": \"%s\"}\n",
+      model::kName, model::kScheme, model::kStep, done, wall_s, done ? 1e9 * stepping_s / done : 0.0,
+      json_number(max_pos).c_str(), json_number(max_vel).c_str(), json_number(max_quat).c_str(),
+      json_number(e0).c_str(), json_number(model::energy(s).total()).c_str(), mbrt::to_string(status));
   return status == mbrt::StepStatus::ok ? 0 : 3;
 }

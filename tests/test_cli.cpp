@@ -139,6 +139,15 @@ TEST_CASE("inconsistent initial velocities name the worst joint; --project-initi
   CHECK(json_number(last_line(fixed.out), "max_velocity_violation") < 1e-9);
 }
 
+TEST_CASE("a run that blows up exits with 3 and still ends with valid JSON") {
+  const Run r = mbrt("sim " + model("unstable_spring.yaml") + " --t-end 1");
+  CHECK(r.exit_code == 3);
+  const std::string json = last_line(r.out);
+  CHECK(json.find("\"status\": \"non_finite\"") != std::string::npos);
+  CHECK(json.find("nan") == std::string::npos);  // JSON has no NaN or Inf: null instead
+  CHECK(json.find("inf") == std::string::npos);
+}
+
 TEST_CASE("a scheme this version does not generate is refused before anything runs") {
   const Run r = mbrt("sim " + model("a01_pendulum.yaml") + " --scheme ali3p");
   CHECK(r.exit_code == 1);
