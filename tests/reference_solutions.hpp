@@ -9,6 +9,17 @@
 
 namespace reference {
 
+// One classical RK4 step of the one-coordinate equation q'' = acc(q).
+template <class Acceleration>
+inline void rk4_step(double& q, double& rate, double h, Acceleration acc) {
+  const double k1p = rate, k1v = acc(q);
+  const double k2p = rate + 0.5 * h * k1v, k2v = acc(q + 0.5 * h * k1p);
+  const double k3p = rate + 0.5 * h * k2v, k3v = acc(q + 0.5 * h * k2p);
+  const double k4p = rate + h * k3v, k4v = acc(q + h * k3p);
+  q += h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p);
+  rate += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+}
+
 // A01 pendulum (1 kg on a 1 m massless bar from the horizontal, g = 9.81):
 // the bob position at t = 0, dt, 2 dt, ... up to t_end, from the minimal-
 // coordinate equation phi'' = -g cos(phi), phi(0) = pi, by classical RK4 at
@@ -20,14 +31,7 @@ inline std::vector<mbrt::Vec3> a01_bob_positions(double t_end, double dt, double
   const long per_sample = std::lround(dt / h);
   const long samples = std::lround(t_end / dt);
   for (long s = 0; s < samples; ++s) {
-    for (long i = 0; i < per_sample; ++i) {
-      const double k1p = rate, k1v = acc(phi);
-      const double k2p = rate + 0.5 * h * k1v, k2v = acc(phi + 0.5 * h * k1p);
-      const double k3p = rate + 0.5 * h * k2v, k3v = acc(phi + 0.5 * h * k2p);
-      const double k4p = rate + h * k3v, k4v = acc(phi + h * k3p);
-      phi += h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p);
-      rate += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-    }
+    for (long i = 0; i < per_sample; ++i) rk4_step(phi, rate, h, acc);
     out.emplace_back(std::cos(phi), std::sin(phi), 0.0);
   }
   return out;

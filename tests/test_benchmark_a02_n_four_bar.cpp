@@ -30,6 +30,7 @@
 #include "a02_n40_blajer.hpp"
 #include "a02_n40_pcst.hpp"
 #include "model_adapter.hpp"
+#include "reference_solutions.hpp"
 
 namespace {
 
@@ -55,14 +56,7 @@ std::vector<Point> reduced_reference() {
   double th = M_PI / 2, w = -1.0;
   std::vector<Point> out{{std::cos(th), std::sin(th)}};
   for (long n = 0; n < std::lround(kEnd / kSample); ++n) {
-    for (long i = 0; i < per_sample; ++i) {
-      const double k1p = w, k1v = acc(th);
-      const double k2p = w + 0.5 * h * k1v, k2v = acc(th + 0.5 * h * k1p);
-      const double k3p = w + 0.5 * h * k2v, k3v = acc(th + 0.5 * h * k2p);
-      const double k4p = w + h * k3v, k4v = acc(th + h * k3p);
-      th += h / 6 * (k1p + 2 * k2p + 2 * k3p + k4p);
-      w += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
-    }
+    for (long i = 0; i < per_sample; ++i) reference::rk4_step(th, w, h, acc);
     out.push_back({std::cos(th), std::sin(th)});
   }
   return out;
