@@ -180,6 +180,33 @@ FactorPattern factor_pattern(const std::vector<std::vector<int>>& coupled) {
   return p;
 }
 
+// Chung and Hulbert's generalized-alpha with spectral radius rho_inf, or
+// the trapezoidal rule; default penalties from the tangent's shift
+// (docs/ali3p.md).
+Ali3pPlan ali3p_plan(const Model& model, const std::vector<ConstraintBlock>& blocks, double max_s) {
+  const Ali3pSettings& set = model.solver.ali3p;
+  Ali3pPlan p;
+  if (set.generalized_alpha) {
+    const double r = set.rho_inf;
+    p.delta_m = (2.0 * r - 1.0) / (r + 1.0);
+    p.delta_f = r / (r + 1.0);
+    p.gamma = 0.5 - p.delta_m + p.delta_f;
+    p.beta = 0.25 * (1.0 - p.delta_m + p.delta_f) * (1.0 - p.delta_m + p.delta_f);
+  }
+  const double h = model.solver.step;
+  const double c = (1.0 - p.delta_f) / (1.0 - p.delta_m) * p.beta * h * h;
+  const double fallback = set.alpha > 0.0 ? set.alpha : 1.0 / (c * set.relative_shift * max_s);
+  p.alpha.assign(blocks.size(), fallback);
+  for (const auto& [name, alpha] : set.alpha_of) {
+    const auto it = std::find_if(blocks.begin(), blocks.end(), [&](const ConstraintBlock& b) { return b.name == name; });
+    if (it == blocks.end()) {
+      throw ModelError(set.alpha_of_where, "solver.ali3p.alpha_of." + name, "no joint or driver named '" + name + "'");
+    }
+    p.alpha[static_cast<size_t>(it - blocks.begin())] = alpha;
+  }
+  return p;
+}
+
 }  // namespace
 
 Analysis analyse(const Model& model) {
@@ -256,6 +283,7 @@ Analysis analyse(const Model& model) {
     const StackedConstraints c = evaluate_constraints(model, a.constraints, 0.0);
     const Eigen::MatrixXd S = c.B * inverse_mass_matrix(model) * c.B.transpose();
     a.regularization = model.solver.penalty * S.diagonal().maxCoeff();
+    if (model.solver.scheme == "ali3p") a.ali3p = ali3p_plan(model, a.constraints, S.diagonal().maxCoeff());
   }
 
   if (!a.gravity) a.skipped.push_back("gravity: no gravity term");

@@ -51,6 +51,13 @@ struct FactorPattern {
   int fill_blocks = 0;                      // blocks of L that are zero in S
 };
 
+// ali3p's integrator coefficients (Newmark beta, gamma; generalized-alpha
+// weights delta_m, delta_f) and the penalty of every constraint block.
+struct Ali3pPlan {
+  double beta = 0.25, gamma = 0.5, delta_m = 0.0, delta_f = 0.0;
+  std::vector<double> alpha;  // per constraint block
+};
+
 struct Analysis {
   std::vector<BodyPlan> bodies;  // same order as Model::bodies
   int rigid_count = 0;
@@ -66,6 +73,7 @@ struct Analysis {
   double stabilization = 0.0;              // staggered-pcst alpha, 1/s
   double baumgarte_alpha = 0.0;            // baumgarte, 1/s
   double baumgarte_beta = 0.0;             // baumgarte, 1/s
+  Ali3pPlan ali3p;                         // ali3p only
   std::vector<std::string> skipped;        // what the scene does not need, for reports
 };
 

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -108,6 +109,21 @@ struct Force {
   Eigen::Vector3d vector = Eigen::Vector3d::Zero();  // force: world, constant
 };
 
+// ali3p (docs/ali3p.md): index-3 augmented Lagrangian with projections.
+struct Ali3pSettings {
+  // Penalty per constraint row; 0 picks the default that puts the tangent's
+  // shift 1/(c alpha) at relative_shift times the largest diagonal entry of S.
+  double alpha = 0.0;
+  double relative_shift = 1.0e-8;
+  std::vector<std::pair<std::string, double>> alpha_of;  // per joint or driver name
+  SourceLocation alpha_of_where;
+  int newton_iterations = 2;
+  bool cuadrado_projection = false;  // projection: bayo (P = M, w = 1) or cuadrado (P + w B^T alpha B = tangent)
+  int projection_iterations = 1;
+  bool generalized_alpha = false;  // integrator: trapezoidal or generalized_alpha
+  double rho_inf = 0.8;            // generalized_alpha: spectral radius at infinite frequency
+};
+
 struct SolverSettings {
   std::string scheme = "staggered-pcst";
   double step = 1.0e-3;
@@ -123,6 +139,7 @@ struct SolverSettings {
   double baumgarte_beta = 0.0;
   // blajer: mass-orthogonal position corrections after each step.
   int corrections = 1;
+  Ali3pSettings ali3p;
 };
 
 struct Model {

@@ -39,7 +39,10 @@ const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
 const Keys kForceKeys = {"type", "body1", "body2", "point1", "point2", "stiffness", "damping",
                          "rest_length", "axis", "value", "body", "point", "vector"};
 const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
-                          "stabilization", "baumgarte_alpha", "baumgarte_beta", "corrections"};
+                          "stabilization", "baumgarte_alpha", "baumgarte_beta", "corrections",
+                          "ali3p"};
+const Keys kAli3pKeys = {"alpha",      "relative_shift",        "alpha_of",   "newton_iterations",
+                         "projection", "projection_iterations", "integrator", "rho_inf"};
 
 const std::vector<std::pair<std::string, JointType>> kJointTypes = {
     {"spherical", JointType::spherical},     {"revolute", JointType::revolute},
@@ -634,6 +637,34 @@ Driver parse_driver(const Value& item, const Model& model, std::map<std::string,
   return d;
 }
 
+Ali3pSettings parse_ali3p(const Value& v) {
+  Ali3pSettings a;
+  const Section s(v, kAli3pKeys);
+  if (auto x = s.find("alpha")) a.alpha = read_positive(*x);
+  if (auto x = s.find("relative_shift")) a.relative_shift = read_positive(*x);
+  if (auto x = s.find("alpha_of")) {
+    if (!x->node.IsMap()) fail_expected(*x, "a map from joint or driver names to penalties");
+    a.alpha_of_where = x->where;
+    for (const auto& entry : x->node) {
+      const YAML::Node key = entry.first;
+      const std::string name = key.IsScalar() ? key.Scalar() : "";
+      const Value value{entry.second, x->key + "." + name, location(x->where.file, entry.second.Mark())};
+      a.alpha_of.emplace_back(name, read_positive(value));
+    }
+  }
+  if (auto x = s.find("newton_iterations")) a.newton_iterations = read_integer_at_least(*x, 1);
+  if (auto x = s.find("projection")) a.cuadrado_projection = read_choice(*x, {"bayo", "cuadrado"}) == "cuadrado";
+  if (auto x = s.find("projection_iterations")) a.projection_iterations = read_integer_at_least(*x, 1);
+  if (auto x = s.find("integrator")) {
+    a.generalized_alpha = read_choice(*x, {"trapezoidal", "generalized_alpha"}) == "generalized_alpha";
+  }
+  if (auto x = s.find("rho_inf")) {
+    a.rho_inf = read_non_negative(*x);
+    if (a.rho_inf > 1.0) fail_expected(*x, "a spectral radius in [0, 1]");
+  }
+  return a;
+}
+
 SolverSettings parse_solver(const Value& v) {
   SolverSettings solver;
   if (v.node.IsNull()) return solver;  // "solver:" with nothing under it: defaults
@@ -646,6 +677,7 @@ SolverSettings parse_solver(const Value& v) {
   if (auto x = s.find("baumgarte_alpha")) solver.baumgarte_alpha = read_non_negative(*x);
   if (auto x = s.find("baumgarte_beta")) solver.baumgarte_beta = read_non_negative(*x);
   if (auto x = s.find("corrections")) solver.corrections = read_integer_at_least(*x, 1);
+  if (auto x = s.find("ali3p")) solver.ali3p = parse_ali3p(*x);
   return solver;
 }
 

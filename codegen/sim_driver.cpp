@@ -108,11 +108,12 @@ int main(int argc, char** argv) {
   model::State s = model::initial_state();
   const double e0 = model::energy(s).total();
   const long steps = std::lround(opt.t_end / model::kStep);
-  double max_pos = 0.0, max_vel = 0.0, max_quat = 0.0;
+  double max_pos = 0.0, max_vel = 0.0, max_acc = 0.0, max_quat = 0.0;
   const auto sample = [&]() {
     const mbrt::ConstraintViolation v = model::constraint_violation(s);
     max_pos = std::max(max_pos, v.position);
     max_vel = std::max(max_vel, v.velocity);
+    max_acc = std::max(max_acc, v.acceleration);
     max_quat = std::max(max_quat, model::quaternion_norm_error(s));
     if (csv) write_row(csv, s, opt.velocities);
   };
@@ -140,10 +141,11 @@ int main(int argc, char** argv) {
   const double wall_s = std::chrono::duration<double>(clock::now() - started).count();
   std::printf(
       "{\"model\": \"%s\", \"scheme\": \"%s\", \"h\": %.17g, \"steps\": %ld, \"wall_s\": %.6g, \"ns_per_step\": %.6g, "
-      "\"max_position_violation\": %s, \"max_velocity_violation\": %s, \"max_quat_norm_error\": %s, "
+      "\"max_position_violation\": %s, \"max_velocity_violation\": %s, "
+      "\"max_acceleration_violation\": %s, \"max_quat_norm_error\": %s, "
       "\"energy_initial\": %s, \"energy_final\": %s, \"status\": \"%s\"}\n",
       model::kName, model::kScheme, model::kStep, done, wall_s, done ? 1e9 * stepping_s / done : 0.0,
-      json_number(max_pos).c_str(), json_number(max_vel).c_str(), json_number(max_quat).c_str(),
+      json_number(max_pos).c_str(), json_number(max_vel).c_str(), json_number(max_acc).c_str(), json_number(max_quat).c_str(),
       json_number(e0).c_str(), json_number(model::energy(s).total()).c_str(), mbrt::to_string(status));
   return status == mbrt::StepStatus::ok ? 0 : 3;
 }

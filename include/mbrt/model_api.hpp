@@ -25,10 +25,12 @@ struct Energy {
   double total() const noexcept { return kinetic + potential; }
 };
 
-// Largest constraint residuals, position (phi) and velocity (phi_dot) level.
+// Largest constraint residuals at position (phi), velocity (phi_dot) and
+// acceleration (phi_ddot) level.
 struct ConstraintViolation {
   double position;
   double velocity;
+  double acceleration;  // B a + quad with the state's accelerations
 };
 
 }  // namespace mbrt

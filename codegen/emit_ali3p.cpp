@@ -1,0 +1,196 @@
+// Step emission for ali3p: index-3 augmented Lagrangian with the trapezoidal
+// rule or generalized-alpha, then velocity and acceleration projections
+// (Dopico et al. 2014; docs/ali3p.md). The tangent M + c B^T alpha B and the
+// projection matrices are inverted through the Woodbury identity with the
+// block Cholesky factor of S + shift, so every matrix keeps S's fixed pattern.
+#include <algorithm>
+
+#include "emitter.hpp"
+
+namespace mbrt::codegen {
+
+namespace {
+
+// A Rows constant with one value per constraint row.
+std::string rows_literal(const std::string& name, const std::vector<double>& values, const std::string& comment) {
+  std::string s = "// " + comment + "\nconst Rows " + name + " = ";
+  if (values.empty()) return s + "Rows::Zero();\n";
+  s += "(Rows() << ";
+  for (size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + num(values[i]);
+  return s + ").finished();\n";
+}
+
+}  // namespace
+
+void Emitter::ali3p_constants(std::ostringstream& o) const {
+  const Ali3pSettings& set = m_.solver.ali3p;
+  const Ali3pPlan& p = a_.ali3p;
+  const double h = m_.solver.step;
+  const double c = (1.0 - p.delta_f) / (1.0 - p.delta_m) * p.beta * h * h;  // tangent weight of B^T alpha B
+  const double w = set.cuadrado_projection ? c : 1.0;                        // projection weight
+  std::vector<double> alpha, tangent_shift, projection_shift;
+  for (int j = 0; j < blocks(); ++j) {
+    for (int r = 0; r < rows(j); ++r) {
+      const double a = p.alpha[static_cast<size_t>(j)];
+      alpha.push_back(a);
+      tangent_shift.push_back(1.0 / (c * a));
+      // Never below the regularization that keeps redundant rows factorable.
+      projection_shift.push_back(std::max(1.0 / (w * a), a_.regularization));
+    }
+  }
+  o << "// Integrator: " << (set.generalized_alpha ? "generalized-alpha, rho_inf = " + num(set.rho_inf) : "trapezoidal rule")
+    << ".\nconstexpr double kBeta = " << num(p.beta) << ";\nconstexpr double kGamma = " << num(p.gamma)
+    << ";\nconstexpr double kDeltaM = " << num(p.delta_m) << ";  // weight of t in the inertia term\n"
+    << "constexpr double kDeltaF = " << num(p.delta_f) << ";  // weight of t in the force terms\n"
+    << "constexpr int kNewtonIterations = " << set.newton_iterations << ";\n"
+    << "constexpr int kProjectionIterations = " << set.projection_iterations << ";  // "
+    << (set.cuadrado_projection ? "cuadrado: P + w B^T alpha B = tangent" : "bayo: P = M, w = 1") << "\n"
+    << rows_literal("kAlpha", alpha, "Penalty alpha per row.")
+    << rows_literal("kTangentShift", tangent_shift,
+                    "Tangent M + c B^T alpha B, c = (1 - dF)/(1 - dM) beta h^2: S's shift 1/(c alpha).")
+    << rows_literal("kProjectionShift", projection_shift, "Projection matrix M + w B^T alpha B: S's shift 1/(w alpha).")
+    << "const Rows kProjectionWeight = kProjectionShift.cwiseInverse();\n\n";
+}
+
+void Emitter::ali3p_stages(std::ostringstream& o) const {
+  ali3p_constants(o);
+  o << "// (n, u_n, a_n, a) => (s, u): Newmark positions and velocities at t + h for\n"
+    << "// the accelerations a; rotations advance by the body-frame increment\n"
+    << "// through the Cayley map.\n"
+    << "void newmark_update(const State& n, const BodyVectors& u_n, const BodyVectors& a_n, const BodyVectors& a,\n"
+    << "                    State& s, BodyVectors& u) noexcept {\n"
+    << "  BodyVectors d;\n"
+    << "  for (int b = 0; b < kBodies; ++b) {\n"
+    << "    d[b] = h * u_n[b] + (h * h * (0.5 - kBeta)) * a_n[b] + (h * h * kBeta) * a[b];\n"
+    << "    u[b] = u_n[b] + (h * (1.0 - kGamma)) * a_n[b] + (h * kGamma) * a[b];\n"
+    << "  }\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    const std::string slot = std::to_string(a_.bodies[i].slot);
+    const std::string x = a_.bodies[i].rigid ? "rigid[" + slot + "]" : "particle[" + slot + "]";
+    o << "  s." << x << ".r = n." << x << ".r + d[" << i << "].head<3>();  // " << m_.bodies[i].name << "\n";
+    if (a_.bodies[i].rigid) {
+      o << "  s." << x << ".p = mbrt::advance_euler_parameters(n." << x << ".p, d[" << i
+        << "].tail<3>() / h, h, kEulerUpdates);\n";
+    }
+  }
+  o << "  set_velocities(u, s);\n}\n\n";
+
+  const bool weighted = a_.ali3p.delta_f != 0.0;
+  o << "// (c, l, lambda, a) => (a): one Newton correction of the dynamic equations\n"
+    << "//   (1 - dM) M a + dM M a_n + (1 - dF) g + dF g_n = 0,  g = B^T lambda - F,\n"
+    << "// lambda = lambda* + alpha phi, with the tangent M + c B^T alpha B inverted as\n"
+    << "// M^-1 - M^-1 B^T (S + 1/(c alpha))^-1 B M^-1 (c is in kTangentShift).\n"
+    << "void newton_correction(const ConstraintSystem& c, const Loads& l, const Rows& lambda,"
+    << (weighted ? " const BodyVectors& a_n,\n                       const BodyVectors& g_n," : "")
+    << " BodyVectors& a) noexcept {\n"
+    << "  BodyVectors x = free_accelerations(l);\n"
+    << "  for (mbrt::Vec6& v : x) v = -v;\n"
+    << "  subtract_constraint_forces(c, lambda, -1.0, x);  // x = M^-1 g\n";
+  if (weighted) {
+    o << "  for (int b = 0; b < kBodies; ++b) {\n"
+      << "    x[b] = a[b] + (kDeltaM * a_n[b] + (1.0 - kDeltaF) * x[b] + kDeltaF * g_n[b]) / (1.0 - kDeltaM);\n"
+      << "  }\n";
+  } else {
+    o << "  for (int b = 0; b < kBodies; ++b) x[b] += a[b];\n";
+  }
+  o << "  Rows mu = jacobian_times(c, x);\n"
+    << "  solve(c, mu);\n"
+    << "  subtract_constraint_forces(c, mu, 1.0, x);\n"
+    << "  for (int b = 0; b < kBodies; ++b) a[b] -= x[b];\n}\n\n";
+
+  o << R"(// (c, g, x*) => (x): augmented-Lagrangian projection (Dopico et al. 2014,
+// eqs. 22 and 28) of velocities (g = phi_t) or accelerations (g = quad):
+//   (M + B^T W B) x = M x* - B^T (W g + sigma),  sigma += W (B x + g),
+// kProjectionIterations passes, W = kProjectionWeight. By the Woodbury
+// identity each pass is x = y - M^-1 B^T (S + W^-1)^-1 B y with
+// y = x* - M^-1 B^T (W g + sigma).
+void project(const ConstraintSystem& c, const Rows& g, BodyVectors& x) noexcept {
+  const BodyVectors x_star = x;
+  Rows sigma = Rows::Zero();
+  for (int i = 0; i < kProjectionIterations; ++i) {
+    x = x_star;
+    subtract_constraint_forces(c, kProjectionWeight.cwiseProduct(g) + sigma, 1.0, x);
+    Rows mu = jacobian_times(c, x);
+    solve(c, mu);
+    subtract_constraint_forces(c, mu, 1.0, x);
+    sigma += kProjectionWeight.cwiseProduct(jacobian_times(c, x) + g);
+  }
+}
+
+// (c, l, phi, s) => (s.lambda, accelerations): consistent accelerations for
+// the initial state, S lambda = B M^-1 F + quad.
+)";
+  constraint_forces_function(o, "");
+}
+
+void Emitter::ali3p_step(std::ostringstream& o) const {
+  const bool weighted = a_.ali3p.delta_f != 0.0;
+  o << R"(mbrt::StepStatus step(State& s) noexcept {
+  const State n = s;
+  const BodyVectors u_n = generalized_velocities(n);
+  const BodyVectors a_n = accelerations_of(n);
+  s.t += h;
+
+  // Newton iterations on the accelerations from the predictor a = a_n
+  // (q = q_n + h u_n + h^2/2 a_n), the multipliers lambda* updated by
+  // alpha phi from the second iteration on (Dopico et al. 2014, sec. 3.3).
+  BodyVectors a = a_n;
+  BodyVectors u;
+  Rows lambda_star = n.lambda;
+  Kinematics k;
+  ConstraintSystem c;
+  Loads l;
+  bool positive = true;
+  for (int i = 0; i < kNewtonIterations; ++i) {
+    newmark_update(n, u_n, a_n, a, s, u);
+    kinematics(s, k);
+    constraint_rows(k, s.t, c);
+    const Rows phi = stacked_phi(c);
+    if (i > 0) lambda_star += kAlpha.cwiseProduct(phi);
+    applied_loads(k, l);
+    positive = factorize(c, kTangentShift) && positive;
+)";
+  o << "    newton_correction(c, l, lambda_star + kAlpha.cwiseProduct(phi), "
+    << (weighted ? "a_n, n.ali3p_force, " : "") << "a);\n  }\n";
+  o << R"(
+  // The step's positions; the multipliers lambda* + alpha phi (eq. 36) are
+  // the dynamic part of the constraint forces and the next step's start.
+  newmark_update(n, u_n, a_n, a, s, u);
+  kinematics(s, k);
+  constraint_rows(k, s.t, c);
+  s.lambda = lambda_star + kAlpha.cwiseProduct(stacked_phi(c));
+)";
+  if (weighted) {
+    o << R"(  applied_loads(k, l);
+  s.ali3p_force = free_accelerations(l);
+  for (mbrt::Vec6& v : s.ali3p_force) v = -v;
+  subtract_constraint_forces(c, s.lambda, -1.0, s.ali3p_force);
+)";
+  }
+  o << R"(
+  // Velocity projection, then the acceleration projection with the
+  // acceleration terms at the projected velocities.
+  positive = factorize(c, kProjectionShift) && positive;
+)"
+    << "  project(c, " << (a_.rheonomic ? "stacked_phi_t(c)" : "Rows::Zero()") << ", u);\n"
+    << R"(  set_velocities(u, s);
+  k.vel = velocities_of(s);
+  constraint_rows(k, s.t, c);
+  project(c, stacked_quad(c), a);
+  set_accelerations(a, s);
+
+  if (!finite(s)) {
+    s = n;
+    return mbrt::StepStatus::non_finite;
+  }
+  if (!positive) {
+    s = n;
+    return mbrt::StepStatus::not_positive;
+  }
+  return mbrt::StepStatus::ok;
+}
+
+)";
+}
+
+}  // namespace mbrt::codegen

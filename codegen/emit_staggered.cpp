@@ -1,0 +1,203 @@
+// Step emission for the schemes built on the staggered explicit stage:
+// staggered-pcst (docs/staggered-pcst.md), baumgarte and blajer
+// (docs/schemes.md).
+#include "emitter.hpp"
+
+namespace mbrt::codegen {
+
+std::string Emitter::stabilization_term() const {
+  switch (scheme_kind()) {
+    case Scheme::pcst:
+      return "(2.0 / h) * (velocity_residual(c, generalized_velocities(s)) + kStabilization * phi)";
+    case Scheme::baumgarte:
+      return "(2.0 * kBaumgarteAlpha) * velocity_residual(c, generalized_velocities(s)) + "
+             "(kBaumgarteBeta * kBaumgarteBeta) * phi";
+    case Scheme::blajer:
+    case Scheme::ali3p: return "";
+  }
+  return "";
+}
+
+void Emitter::staggered_stages(std::ostringstream& o) const {
+  o << R"(// (s, accelerations at t) => (s): explicit stage, central difference.
+// Half kick of the velocities, then positions and Euler parameters to t + h
+// with the half-step velocities (docs/staggered-pcst.md, eqs. 1-3).
+void explicit_stage(State& s) noexcept {
+  for (int b = 0; b < kRigidBodies; ++b) {
+    mbrt::RigidState& x = s.rigid[b];
+    x.v += (0.5 * h) * s.rigid_acceleration[b].a;
+    x.w += (0.5 * h) * s.rigid_acceleration[b].alpha;
+    x.r += h * x.v;
+    x.p = mbrt::advance_euler_parameters(x.p, x.w, h, kEulerUpdates);
+  }
+  for (int b = 0; b < kParticles; ++b) {
+    mbrt::ParticleState& x = s.particle[b];
+    x.v += (0.5 * h) * s.particle_acceleration[b];
+    x.r += h * x.v;
+  }
+  s.t += h;
+}
+
+)";
+  const std::string stab = stabilization_term();
+  switch (scheme_kind()) {
+    case Scheme::pcst:
+      o << R"(// (c, l, u_half) => (u): implicit stage. The end-of-step velocities satisfy
+// the velocity constraints, regularized by the penalty eps (eq. 5):
+//   (h/2) (S + 2 eps/h I) mu = B u_hat,  u = u_hat - h/2 M^-1 B^T mu.
+void implicit_stage(const ConstraintSystem& c, const Loads& l, const BodyVectors& u_half, BodyVectors& u) noexcept {
+  const BodyVectors a_free = free_accelerations(l);
+  for (int b = 0; b < kBodies; ++b) u[b] = u_half[b] + (0.5 * h) * a_free[b];
+  Rows mu = (2.0 / h) * velocity_residual(c, u);
+  solve(c, mu);
+  subtract_constraint_forces(c, mu, 0.5 * h, u);
+}
+
+// (c, l, phi, s) => (s.lambda, accelerations): multipliers of the stabilized
+// companion equation (eq. 7)
+//   (S + 2 eps/h I) lambda = B M^-1 F + quad + (2/h) (B u + alpha phi)
+// which the next explicit stage applies: it steers phi at the next step to
+// (1 - alpha h) phi. quad was evaluated at the predicted half-step velocity.
+)";
+      break;
+    case Scheme::baumgarte:
+      o << R"(// (c, l, phi, s) => (s.lambda, accelerations): index-1 multipliers with
+// Baumgarte's terms, phi'' + 2 alpha phi' + beta^2 phi = 0:
+//   S lambda = B M^-1 F + quad + 2 alpha B u + beta^2 phi
+)";
+      break;
+    case Scheme::blajer:
+      o << R"(// (c, l, phi, s) => (s.lambda, accelerations): the projective (index-1)
+// multipliers, S lambda = B M^-1 F + quad (Blajer 1997, eq. 26). Drift is
+// removed after the step by mass-orthogonal corrections.
+)";
+      break;
+  }
+  constraint_forces_function(o, stab);
+  if (scheme_kind() == Scheme::blajer) {
+    o << R"(// (c, s) => (s): mass-orthogonal position correction (Blajer eq. 38),
+// dq = -M^-1 B^T S^-1 phi, rotations applied as body-frame increments.
+void correct_positions(const ConstraintSystem& c, State& s) noexcept {
+  Rows x = stacked_phi(c);
+  solve(c, x);
+  BodyVectors dq;
+  for (mbrt::Vec6& d : dq) d.setZero();
+  subtract_constraint_forces(c, x, 1.0, dq);
+)";
+    for (size_t i = 0; i < m_.bodies.size(); ++i) {
+      const std::string st = state_of(static_cast<int>(i));
+      o << "  " << st << ".r += dq[" << i << "].head<3>();\n";
+      if (a_.bodies[i].rigid) {
+        o << "  " << st << ".p = mbrt::quaternion_product(" << st << ".p, mbrt::cayley_increment(dq[" << i
+          << "].tail<3>())).normalized();\n";
+      }
+    }
+    o << R"(}
+
+// (c, s) => (s): mass-orthogonal velocity correction (Blajer eq. 40),
+// du = -M^-1 B^T S^-1 B u.
+void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
+  BodyVectors u = generalized_velocities(s);
+  Rows x = velocity_residual(c, u);
+  solve(c, x);
+  subtract_constraint_forces(c, x, 1.0, u);
+  set_velocities(u, s);
+}
+
+)";
+  }
+}
+
+void Emitter::staggered_step(std::ostringstream& o) const {
+  o << R"(mbrt::StepStatus step(State& s) noexcept {
+  const State last_good = s;
+  const BodyVectors a_old = accelerations_of(s);
+  explicit_stage(s);
+  const BodyVectors u_half = generalized_velocities(s);
+
+)";
+  if (scheme_kind() == Scheme::pcst) {
+    o << R"(  // Constraint terms at the new positions, factorized once per step. The
+  // quadratic terms are taken at the predicted next half-step velocity
+  // u_half + h a_old, which the next explicit stage will drift with.
+  Kinematics k;
+  kinematics(s, k);
+  BodyVectors u = u_half;
+  for (int b = 0; b < kBodies; ++b) u[b] += h * a_old[b];
+  set_velocities(u, s);
+  k.vel = velocities_of(s);
+  ConstraintSystem c;
+  constraint_rows(k, s.t, c);
+  bool positive = factorize(c);
+
+  // Implicit stages: the first evaluates velocity-dependent loads at the
+  // predicted end-of-step velocities u_half + h/2 a_old, the next ones at the
+  // last result.
+  for (int b = 0; b < kBodies; ++b) u[b] = u_half[b] + (0.5 * h) * a_old[b];
+  Loads l;
+  for (int stage = 0; stage < kStages; ++stage) {
+    set_velocities(u, s);
+    k.vel = velocities_of(s);
+    applied_loads(k, l);
+    implicit_stage(c, l, u_half, u);
+  }
+  set_velocities(u, s);
+  constraint_forces(c, l, stacked_phi(c), s);
+)";
+  } else {
+    o << R"(  // Constraint terms at the new positions, factorized once per step, with
+  // the quadratic terms at the predicted end-of-step velocity.
+  Kinematics k;
+  kinematics(s, k);
+  BodyVectors u = u_half;
+  for (int b = 0; b < kBodies; ++b) u[b] += (0.5 * h) * a_old[b];
+  set_velocities(u, s);
+  k.vel = velocities_of(s);
+  ConstraintSystem c;
+  constraint_rows(k, s.t, c);
+  bool positive = factorize(c);
+  const Rows phi = stacked_phi(c);
+
+  // Implicit stages, fixed-point passes on u = u_half + h/2 a(t + h, u).
+  Loads l;
+  for (int stage = 0; stage < kStages; ++stage) {
+    set_velocities(u, s);
+    k.vel = velocities_of(s);
+    applied_loads(k, l);
+    constraint_forces(c, l, phi, s);
+    const BodyVectors a = accelerations_of(s);
+    for (int b = 0; b < kBodies; ++b) u[b] = u_half[b] + (0.5 * h) * a[b];
+  }
+  set_velocities(u, s);
+)";
+    if (scheme_kind() == Scheme::blajer) {
+      o << R"(
+  // Post-step corrections, a fixed number for positions, then velocities.
+  for (int i = 0; i < kCorrections; ++i) {
+    if (i > 0) {
+      kinematics(s, k);
+      constraint_rows(k, s.t, c);
+      positive = factorize(c) && positive;
+    }
+    correct_positions(c, s);
+  }
+  correct_velocities(c, s);
+)";
+    }
+  }
+  o << R"(
+  if (!finite(s)) {
+    s = last_good;
+    return mbrt::StepStatus::non_finite;
+  }
+  if (!positive) {
+    s = last_good;
+    return mbrt::StepStatus::not_positive;
+  }
+  return mbrt::StepStatus::ok;
+}
+
+)";
+}
+
+}  // namespace mbrt::codegen

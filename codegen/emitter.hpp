@@ -1,0 +1,127 @@
+// The C++ emitter's shared state and the pieces every scheme uses. The
+// definitions are split by concept: emit_cpp.cpp (model data, kinematics,
+// loads, constraint system, diagnostics), emit_staggered.cpp (staggered-pcst,
+// baumgarte, blajer), emit_ali3p.cpp (ali3p).
+#pragma once
+
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "emit_cpp.hpp"
+
+namespace mbrt::codegen {
+
+// Literals for generated code: doubles round-trip exactly.
+inline std::string num(double x) {
+  std::ostringstream o;
+  o << std::setprecision(17) << x;
+  std::string s = o.str();
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+inline std::string vec3(const Eigen::Vector3d& v) {
+  return "mbrt::Vec3(" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + ")";
+}
+
+inline std::string vec4(const Eigen::Vector4d& v) {
+  return "mbrt::Vec4(" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ", " + num(v[3]) + ")";
+}
+
+inline std::string mat3(const Eigen::Matrix3d& m) {
+  std::string s = "(mbrt::Mat3() << ";
+  for (int i = 0; i < 9; ++i) s += num(m(i / 3, i % 3)) + (i < 8 ? ", " : "");
+  return s + ").finished()";
+}
+
+inline std::string rows_type(int n) { return "Eigen::Matrix<double, " + std::to_string(n) + ", 1>"; }
+inline std::string block_type(int r, int c) {
+  return "Eigen::Matrix<double, " + std::to_string(r) + ", " + std::to_string(c) + ">";
+}
+
+// Writes the generated files for one model.
+class Emitter {
+ public:
+  Emitter(const Model& m, const Analysis& a) : m_(m), a_(a) {}
+
+  GeneratedCode run();
+
+ private:
+  const Model& m_;
+  const Analysis& a_;
+
+  // Implicit passes per step: two when the end-of-step accelerations depend on
+  // the end-of-step velocities (gyroscopic or damping loads, Baumgarte's
+  // velocity term), else one.
+  int stages() const {
+    const bool baumgarte = m_.solver.scheme == "baumgarte" && a_.constraint_rows > 0;
+    return a_.velocity_dependent_forces || baumgarte ? 2 : 1;
+  }
+  const Body& body(int i) const { return m_.bodies[static_cast<size_t>(i)]; }
+  const BodyPlan& plan(int i) const { return a_.bodies[static_cast<size_t>(i)]; }
+  const ConstraintBlock& block(int j) const { return a_.constraints[static_cast<size_t>(j)]; }
+  int blocks() const { return static_cast<int>(a_.constraints.size()); }
+  int rows(int j) const { return block(j).rows; }
+  int first_row(int j) const { return block(j).first_row; }
+  std::string jname(int j) const { return block(j).name; }
+
+  std::string state_of(int i) const {
+    return plan(i).rigid ? "s.rigid[" + std::to_string(plan(i).slot) + "]" : "s.particle[" + std::to_string(plan(i).slot) + "]";
+  }
+  std::string mass_of(int i) const { return body(i).name + "_mass"; }
+  std::string motion(int i) const {
+    if (i == kGround) return "mbrt::BodyMotion{kGroundPose, kGroundVelocity}";
+    const std::string n = std::to_string(i);
+    return "mbrt::BodyMotion{k.pose[" + n + "], k.vel[" + n + "]}";
+  }
+  std::string pose(int i) const { return i == kGround ? "kGroundPose" : "k.pose[" + std::to_string(i) + "]"; }
+  // Name of the M^-1 B^T block of joint j for body b.
+  std::string mbt(int j, int b) const { return "c.mbt_" + std::to_string(j) + "_" + std::to_string(b); }
+  std::string L(int i, int k) const { return "c.L_" + std::to_string(i) + "_" + std::to_string(k); }
+  std::string side(int j, int b) const { return block(j).body1 == b ? "J1" : "J2"; }
+  std::vector<int> moving_bodies(int j) const {
+    std::vector<int> out;
+    for (int b : {block(j).body1, block(j).body2}) if (b != kGround) out.push_back(b);
+    return out;
+  }
+
+  // emit_cpp.cpp: the model's data and the stages every scheme shares.
+  std::string header() const;
+  std::string source() const;
+  void constants(std::ostringstream& o) const;
+  void workspace_types(std::ostringstream& o) const;
+  void velocity_helpers(std::ostringstream& o) const;
+  void loads_stage(std::ostringstream& o) const;
+  void constraint_stage(std::ostringstream& o) const;
+  void stacked(std::ostringstream& o, const std::string& member) const;  // Rows stacked_<member>(c)
+  std::string seg(const std::string& v, int j) const;
+  // Expression for block S(i, j) = sum over shared moving bodies of B_i M^-1 B_j^T.
+  std::string s_block(int i, int j) const;
+  void mass_products(std::ostringstream& o) const;
+  // constraint_forces(c, l, phi, s): S lambda = B M^-1 F + quad + stabilization.
+  void constraint_forces_function(std::ostringstream& o, const std::string& stabilization) const;
+  void initial_state_function(std::ostringstream& o) const;
+  void diagnostics(std::ostringstream& o) const;
+
+  enum class Scheme { pcst, baumgarte, blajer, ali3p };
+  Scheme scheme_kind() const {
+    if (m_.solver.scheme == "baumgarte") return Scheme::baumgarte;
+    if (m_.solver.scheme == "blajer") return Scheme::blajer;
+    if (m_.solver.scheme == "ali3p") return Scheme::ali3p;
+    return Scheme::pcst;
+  }
+
+  // emit_staggered.cpp
+  std::string stabilization_term() const;  // of S lambda = B M^-1 F + quad + stabilization
+  void staggered_stages(std::ostringstream& o) const;
+  void staggered_step(std::ostringstream& o) const;
+
+  // emit_ali3p.cpp
+  void ali3p_constants(std::ostringstream& o) const;
+  void ali3p_stages(std::ostringstream& o) const;
+  void ali3p_step(std::ostringstream& o) const;
+};
+
+}  // namespace mbrt::codegen
