@@ -26,6 +26,7 @@
 
 #include <mbrt/rotation.hpp>
 
+#include "a02_n40_ali3p.hpp"
 #include "a02_n40_baumgarte.hpp"
 #include "a02_n40_blajer.hpp"
 #include "a02_n40_pcst.hpp"
@@ -42,6 +43,7 @@ constexpr double kEnd = 20.0;
 BENCH_MODEL(Pcst, a02_n40_pcst);
 BENCH_MODEL(Baumgarte, a02_n40_baumgarte);
 BENCH_MODEL(Blajer, a02_n40_blajer);
+BENCH_MODEL(Ali3p, a02_n40_ali3p);
 
 struct Point {
   double x, y;
@@ -160,7 +162,13 @@ TEST_CASE("A02, N = 40, h = 1e-3: every scheme follows the reference through 20 
   CHECK(blajer.energy_error < 4e-2);
   CHECK(blajer.violation < 1e-9);
 
-  for (const Result* r : {&pcst, &baumgarte, &blajer}) {
+  const Result ali3p = run<Ali3p>(ref);
+  REQUIRE(ali3p.all_ok);
+  CHECK(ali3p.b0_error < 1e-3);
+  CHECK(ali3p.energy_error < 3e-2);
+  CHECK(ali3p.violation < 2e-9);
+
+  for (const Result* r : {&pcst, &baumgarte, &blajer, &ali3p}) {
     CHECK(r->horizontal_passes == passes);
     CHECK(r->spread < 1e-3);
   }

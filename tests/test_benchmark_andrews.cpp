@@ -19,6 +19,7 @@
 #include <string>
 #include <string_view>
 
+#include "andrews_ali3p.hpp"
 #include "andrews_baumgarte.hpp"
 #include "andrews_blajer.hpp"
 #include "andrews_pcst.hpp"
@@ -29,6 +30,7 @@ namespace {
 BENCH_MODEL(Pcst, andrews_pcst);
 BENCH_MODEL(Baumgarte, andrews_baumgarte);
 BENCH_MODEL(Blajer, andrews_blajer);
+BENCH_MODEL(Ali3p, andrews_ali3p);
 
 // Consistent initial angles q0 of the Test Set (beta, Theta, gamma, Phi, delta, Omega, epsilon).
 constexpr std::array<double, 7> kQ0 = {-0.0617138900142764496358948458001, 0.0,
@@ -123,4 +125,11 @@ TEST_CASE("Andrews' squeezer, h = 1e-5: the Test Set solution at t = 0.03 in eve
   CHECK(blajer.rate_error < 2e-3);
   CHECK(blajer.balance_error < 1e-4);
   CHECK(blajer.violation < 1e-12);
+
+  const Result ali3p = run<Ali3p>();
+  REQUIRE(ali3p.all_ok);
+  CHECK(ali3p.angle_error < 2e-4);
+  CHECK(ali3p.rate_error < 4e-3);
+  CHECK(ali3p.balance_error < 1e-4);
+  CHECK(ali3p.violation < 1e-12);
 }

@@ -18,6 +18,7 @@
 
 #include <mbrt/rotation.hpp>
 
+#include "bricard_ali3p.hpp"
 #include "bricard_baumgarte.hpp"
 #include "bricard_blajer.hpp"
 #include "bricard_pcst.hpp"
@@ -28,6 +29,7 @@ namespace {
 BENCH_MODEL(Pcst, bricard_pcst);
 BENCH_MODEL(Baumgarte, bricard_baumgarte);
 BENCH_MODEL(Blajer, bricard_blajer);
+BENCH_MODEL(Ali3p, bricard_ali3p);
 
 struct Result {
   bool all_ok = true;
@@ -87,4 +89,5 @@ TEST_CASE("A04 Bricard, h = 1e-3, 100 s: energy conserved, violations bounded, t
   check_common(run<Pcst>(), 1e-5, 1e-8, 1e-8);
   check_common(run<Baumgarte>(), 1e-4, 1e-7, 1e-5);
   check_common(run<Blajer>(), 1e-5, 1e-13, 1e-8);
+  check_common(run<Ali3p>(), 1e-5, 1e-11, 1e-11);
 }

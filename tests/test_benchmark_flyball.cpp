@@ -24,6 +24,7 @@
 
 #include <mbrt/rotation.hpp>
 
+#include "flyball_ali3p.hpp"
 #include "flyball_baumgarte.hpp"
 #include "flyball_blajer.hpp"
 #include "flyball_pcst.hpp"
@@ -34,6 +35,7 @@ namespace {
 BENCH_MODEL(Pcst, flyball_pcst);
 BENCH_MODEL(Baumgarte, flyball_baumgarte);
 BENCH_MODEL(Blajer, flyball_blajer);
+BENCH_MODEL(Ali3p, flyball_ali3p);
 
 using mbrt::Mat3;
 using mbrt::Vec3;
@@ -155,7 +157,8 @@ TEST_CASE("A05 flyball governor, damped, h = 1e-4, 10 s: energy balance and angu
   const Result pcst = run<Pcst>(kDamping);
   const Result baumgarte = run<Baumgarte>(kDamping);
   const Result blajer = run<Blajer>(kDamping);
-  for (const Result* r : {&pcst, &baumgarte, &blajer}) {
+  const Result ali3p = run<Ali3p>(kDamping);
+  for (const Result* r : {&pcst, &baumgarte, &blajer, &ali3p}) {
     REQUIRE(r->all_ok);
     CHECK(r->energy_loss > 1e-3);      // the dampers take energy out
     CHECK(r->max_energy_rise < 1e-6);  // and it never comes back
@@ -172,4 +175,7 @@ TEST_CASE("A05 flyball governor, damped, h = 1e-4, 10 s: energy balance and angu
   CHECK(pcst.violation < 1e-9);
   CHECK(baumgarte.violation < 1e-7);
   CHECK(blajer.violation < 1e-13);
+  CHECK(ali3p.balance_error < 2e-5);
+  CHECK(ali3p.lz_error < 2e-6);
+  CHECK(ali3p.violation < 1e-9);
 }

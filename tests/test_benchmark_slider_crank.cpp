@@ -30,6 +30,7 @@
 
 #include <mbrt/rotation.hpp>
 
+#include "slider_crank_ali3p.hpp"
 #include "slider_crank_baumgarte.hpp"
 #include "slider_crank_blajer.hpp"
 #include "slider_crank_pcst.hpp"
@@ -40,6 +41,7 @@ namespace {
 BENCH_MODEL(Pcst, slider_crank_pcst);
 BENCH_MODEL(Baumgarte, slider_crank_baumgarte);
 BENCH_MODEL(Blajer, slider_crank_blajer);
+BENCH_MODEL(Ali3p, slider_crank_ali3p);
 
 constexpr double kSample = 0.01;  // s, the published spacing
 constexpr double kEnd = 5.0;
@@ -164,4 +166,10 @@ TEST_CASE("spatial slider-crank, h = 1e-4, 5 s: slider position against the redu
   CHECK(blajer.error < 5e-5);
   CHECK(blajer.energy_error < 2e-5);
   CHECK(blajer.violation < 1e-12);
+
+  const Result ali3p = run<Ali3p>(ref);
+  REQUIRE(ali3p.all_ok);
+  CHECK(ali3p.error < 1e-5);
+  CHECK(ali3p.energy_error < 5e-6);
+  CHECK(ali3p.violation < 1e-11);
 }
