@@ -181,9 +181,10 @@ FactorPattern factor_pattern(const std::vector<std::vector<int>>& coupled) {
 }
 
 // Chung and Hulbert's generalized-alpha with spectral radius rho_inf, or
-// the trapezoidal rule; default penalties from the tangent's shift
+// the trapezoidal rule; the default penalty puts the tangent's shift
+// 1/(c alpha) at relative_shift times the largest diagonal entry of S
 // (docs/ali3p.md).
-Ali3pPlan ali3p_plan(const Model& model, const std::vector<ConstraintBlock>& blocks, double max_s) {
+Ali3pPlan ali3p_plan(const Model& model, const std::vector<ConstraintBlock>& blocks, const Eigen::VectorXd& s_diagonal) {
   const Ali3pSettings& set = model.solver.ali3p;
   Ali3pPlan p;
   if (set.generalized_alpha) {
@@ -195,8 +196,8 @@ Ali3pPlan ali3p_plan(const Model& model, const std::vector<ConstraintBlock>& blo
   }
   const double h = model.solver.step;
   const double c = (1.0 - p.delta_f) / (1.0 - p.delta_m) * p.beta * h * h;
-  const double fallback = set.alpha > 0.0 ? set.alpha : 1.0 / (c * set.relative_shift * max_s);
-  p.alpha.assign(blocks.size(), fallback);
+  const double s_max = s_diagonal.size() > 0 ? s_diagonal.maxCoeff() : 0.0;
+  p.alpha.assign(blocks.size(), set.alpha > 0.0 ? set.alpha : 1.0 / (c * set.relative_shift * s_max));
   for (const auto& [name, alpha] : set.alpha_of) {
     const auto it = std::find_if(blocks.begin(), blocks.end(), [&](const ConstraintBlock& b) { return b.name == name; });
     if (it == blocks.end()) {
@@ -279,12 +280,13 @@ Analysis analyse(const Model& model) {
   a.stabilization = model.solver.stabilization > 0.0 ? model.solver.stabilization : 1.0 / h;
   a.baumgarte_alpha = model.solver.baumgarte_alpha > 0.0 ? model.solver.baumgarte_alpha : 0.1 / h;
   a.baumgarte_beta = model.solver.baumgarte_beta > 0.0 ? model.solver.baumgarte_beta : 0.1 / h;
+  Eigen::VectorXd s_diagonal;  // of S at t = 0
   if (a.constraint_rows > 0) {
     const StackedConstraints c = evaluate_constraints(model, a.constraints, 0.0);
-    const Eigen::MatrixXd S = c.B * inverse_mass_matrix(model) * c.B.transpose();
-    a.regularization = model.solver.penalty * S.diagonal().maxCoeff();
-    if (model.solver.scheme == "ali3p") a.ali3p = ali3p_plan(model, a.constraints, S.diagonal().maxCoeff());
+    s_diagonal = (c.B * inverse_mass_matrix(model) * c.B.transpose()).diagonal();
+    a.regularization = model.solver.penalty * s_diagonal.maxCoeff();
   }
+  if (model.solver.scheme == "ali3p") a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
 
   if (!a.gravity) a.skipped.push_back("gravity: no gravity term");
   if (a.particle_count > 0) a.skipped.push_back(std::to_string(a.particle_count) + " particle(s): no rotational state");

@@ -98,23 +98,27 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
     << "  subtract_constraint_forces(c, mu, 1.0, x);\n"
     << "  for (int b = 0; b < kBodies; ++b) a[b] -= x[b];\n}\n\n";
 
-  o << R"(// (c, g, x*) => (x): augmented-Lagrangian projection (Dopico et al. 2014,
-// eqs. 22 and 28) of velocities (g = phi_t) or accelerations (g = quad):
+  o << R"(// (c, g, x*) => (x, nu): augmented-Lagrangian projection (Dopico et al.
+// 2014, eqs. 22 and 28) of velocities (g = phi_t) or accelerations (g = quad):
 //   (M + B^T W B) x = M x* - B^T (W g + sigma),  sigma += W (B x + g),
 // kProjectionIterations passes, W = kProjectionWeight. By the Woodbury
-// identity each pass is x = y - M^-1 B^T (S + W^-1)^-1 B y with
-// y = x* - M^-1 B^T (W g + sigma).
-void project(const ConstraintSystem& c, const Rows& g, BodyVectors& x) noexcept {
+// identity each pass is x = x* - M^-1 B^T nu with
+//   (S + W^-1) nu = B x* + g + W^-1 sigma,
+// a form without the large products W g. nu is the projection's multiplier:
+// for accelerations, the constraint forces' projection part.
+Rows project(const ConstraintSystem& c, const Rows& g, BodyVectors& x) noexcept {
   const BodyVectors x_star = x;
+  const Rows b_x_star = jacobian_times(c, x_star) + g;
   Rows sigma = Rows::Zero();
+  Rows nu;
   for (int i = 0; i < kProjectionIterations; ++i) {
+    nu = b_x_star + kProjectionShift.cwiseProduct(sigma);
+    solve(c, nu);
     x = x_star;
-    subtract_constraint_forces(c, kProjectionWeight.cwiseProduct(g) + sigma, 1.0, x);
-    Rows mu = jacobian_times(c, x);
-    solve(c, mu);
-    subtract_constraint_forces(c, mu, 1.0, x);
+    subtract_constraint_forces(c, nu, 1.0, x);
     sigma += kProjectionWeight.cwiseProduct(jacobian_times(c, x) + g);
   }
+  return nu;
 }
 
 // (c, l, phi, s) => (s.lambda, accelerations): consistent accelerations for
@@ -136,7 +140,7 @@ void Emitter::ali3p_step(std::ostringstream& o) const {
   // alpha phi from the second iteration on (Dopico et al. 2014, sec. 3.3).
   BodyVectors a = a_n;
   BodyVectors u;
-  Rows lambda_star = n.lambda;
+  Rows lambda_star = n.ali3p_lambda_star;
   Kinematics k;
   ConstraintSystem c;
   Loads l;
@@ -159,6 +163,7 @@ void Emitter::ali3p_step(std::ostringstream& o) const {
   kinematics(s, k);
   constraint_rows(k, s.t, c);
   s.lambda = lambda_star + kAlpha.cwiseProduct(stacked_phi(c));
+  s.ali3p_lambda_star = s.lambda;
 )";
   if (weighted) {
     o << R"(  applied_loads(k, l);
@@ -169,14 +174,15 @@ void Emitter::ali3p_step(std::ostringstream& o) const {
   }
   o << R"(
   // Velocity projection, then the acceleration projection with the
-  // acceleration terms at the projected velocities.
+  // acceleration terms at the projected velocities; its multiplier is the
+  // constraint forces' projection part (Q = Q_dyn + Q_acc, eq. 51).
   positive = factorize(c, kProjectionShift) && positive;
 )"
     << "  project(c, " << (a_.rheonomic ? "stacked_phi_t(c)" : "Rows::Zero()") << ", u);\n"
     << R"(  set_velocities(u, s);
   k.vel = velocities_of(s);
   constraint_rows(k, s.t, c);
-  project(c, stacked_quad(c), a);
+  s.lambda += project(c, stacked_quad(c), a);
   set_accelerations(a, s);
 
   if (!finite(s)) {

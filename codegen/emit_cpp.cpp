@@ -52,6 +52,11 @@ std::string Emitter::header() const {
     << "  std::array<mbrt::Vec3, kParticles> particle_acceleration;\n"
     << "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n"
     << "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n";
+  if (scheme_kind() == Scheme::ali3p) {
+    o << "  // ali3p: lambda* + alpha phi of the last step, the next one's start\n"
+      << "  // (lambda adds the acceleration projection's part).\n"
+      << "  Eigen::Matrix<double, kConstraintRows, 1> ali3p_lambda_star;\n";
+  }
   if (scheme_kind() == Scheme::ali3p && a_.ali3p.delta_f != 0.0) {
     o << "  // M^-1 (B^T lambda - F) at t, the generalized-alpha weighting's old term.\n"
       << "  std::array<mbrt::Vec6, kBodies> ali3p_force;\n";
@@ -430,6 +435,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
   o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n"
     << (ali3p ? "  factorize(c, Rows::Constant(kRegularization));\n" : "  factorize(c);\n")
     << "  Loads l;\n  applied_loads(k, l);\n  constraint_forces(c, l, stacked_phi(c), s);\n";
+  if (ali3p) o << "  s.ali3p_lambda_star = s.lambda;\n";
   if (ali3p && a_.ali3p.delta_f != 0.0) {
     o << "  const BodyVectors a = accelerations_of(s);\n"
       << "  for (int b = 0; b < kBodies; ++b) s.ali3p_force[b] = -a[b];  // M a = F - B^T lambda\n";

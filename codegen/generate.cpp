@@ -29,6 +29,20 @@ void apply_overrides(Model& model, const GenerateOptions& options) {
     if (*options.euler_updates < 1) throw ModelError(cli, "--euler-updates", "expected an integer >= 1");
     model.solver.euler_updates = *options.euler_updates;
   }
+  Ali3pSettings& ali3p = model.solver.ali3p;
+  if (options.ali3p_projection) {
+    if (*options.ali3p_projection != "bayo" && *options.ali3p_projection != "cuadrado") {
+      throw ModelError(cli, "--ali3p-projection", "expected bayo or cuadrado, got '" + *options.ali3p_projection + "'");
+    }
+    ali3p.cuadrado_projection = *options.ali3p_projection == "cuadrado";
+  }
+  if (options.ali3p_integrator) {
+    if (*options.ali3p_integrator != "trapezoidal" && *options.ali3p_integrator != "generalized_alpha") {
+      throw ModelError(cli, "--ali3p-integrator",
+                       "expected trapezoidal or generalized_alpha, got '" + *options.ali3p_integrator + "'");
+    }
+    ali3p.generalized_alpha = *options.ali3p_integrator == "generalized_alpha";
+  }
   const std::string& scheme = model.solver.scheme;
   if (scheme == "staggered-nps") {
     throw ModelError(cli, "solver.scheme",

@@ -15,6 +15,8 @@ struct GenerateOptions {
   std::optional<double> step;
   std::optional<int> euler_updates;
   std::optional<std::string> name;  // replaces the model's name (and C++ namespace)
+  std::optional<std::string> ali3p_projection;  // bayo | cuadrado
+  std::optional<std::string> ali3p_integrator;  // trapezoidal | generalized_alpha
   bool project_initial = false;
 };
 

@@ -12,7 +12,9 @@ namespace {
 
 constexpr const char* kUsage = R"(usage:
   mbrt gen MODEL.yaml -o DIR [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
+                      [--ali3p-projection bayo|cuadrado] [--ali3p-integrator trapezoidal|generalized_alpha]
   mbrt sim MODEL.yaml [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
+                      [--ali3p-projection P] [--ali3p-integrator I]
                       [--t-end T] [--out F.csv] [--every N] [--velocities] [--verbose]
 
 gen writes DIR/<name>.hpp and DIR/<name>.cpp. sim generates, compiles (cached by
@@ -65,6 +67,8 @@ int run(const std::vector<std::string>& args) {
     else if (a == "--euler-updates") gen.euler_updates = parse_integer(a, value());
     else if (a == "--project-initial") gen.project_initial = true;
     else if (a == "--name") gen.name = value();
+    else if (a == "--ali3p-projection") gen.ali3p_projection = value();
+    else if (a == "--ali3p-integrator") gen.ali3p_integrator = value();
     else if (command == "gen" && a == "-o") out_dir = value();
     else if (command == "sim" && a == "--t-end") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_number(a, value()))});
     else if (command == "sim" && a == "--every") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_integer(a, value()))});

@@ -111,13 +111,14 @@ struct Force {
 
 // ali3p (docs/ali3p.md): index-3 augmented Lagrangian with projections.
 struct Ali3pSettings {
-  // Penalty per constraint row; 0 picks the default that puts the tangent's
-  // shift 1/(c alpha) at relative_shift times the largest diagonal entry of S.
+  // Penalty of every constraint; 0 picks the default that puts the
+  // tangent's shift 1/(c alpha) at relative_shift times S's largest diagonal
+  // entry.
   double alpha = 0.0;
-  double relative_shift = 1.0e-8;
+  double relative_shift = 1.0e-6;
   std::vector<std::pair<std::string, double>> alpha_of;  // per joint or driver name
   SourceLocation alpha_of_where;
-  int newton_iterations = 2;
+  int newton_iterations = 3;
   bool cuadrado_projection = false;  // projection: bayo (P = M, w = 1) or cuadrado (P + w B^T alpha B = tangent)
   int projection_iterations = 1;
   bool generalized_alpha = false;  // integrator: trapezoidal or generalized_alpha
