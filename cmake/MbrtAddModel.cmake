@@ -1,13 +1,15 @@
 # mbrt_add_model(<target> MODEL <model.yaml>
-#                [NAME <name>] [SCHEME <scheme>] [STEP <h>] [EULER_UPDATES <k>] [PROJECT_INITIAL])
+#                [NAME <name>] [SCHEME <scheme>] [STEP <h>] [EULER_UPDATES <k>] [PROJECT_INITIAL]
+#                [GEN_OPTIONS <mbrt gen options>...])
 #
 # Generates the model's step with `mbrt gen` at build time (again whenever the
 # model file or the generator changes) and adds it as a static library
 # <target>. Include "<name>.hpp" (name from the model file, or NAME to build
 # several variants of one model into one program) and call
-# mbrt::models::<name>::step().
+# mbrt::models::<name>::step(). GEN_OPTIONS passes further `mbrt gen` options
+# (e.g. --ali3p-projection cuadrado).
 function(mbrt_add_model target)
-  cmake_parse_arguments(ARG "PROJECT_INITIAL" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "" ${ARGN})
+  cmake_parse_arguments(ARG "PROJECT_INITIAL" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "mbrt_add_model(${target}): MODEL <file.yaml> is required")
   endif()
@@ -40,6 +42,7 @@ function(mbrt_add_model target)
   if(ARG_PROJECT_INITIAL)
     list(APPEND options --project-initial)
   endif()
+  list(APPEND options ${ARG_GEN_OPTIONS})
 
   set(dir "${CMAKE_CURRENT_BINARY_DIR}/mbrt_models/${target}")
   add_custom_command(
