@@ -91,6 +91,73 @@ class Emitter {
     return out;
   }
 
+  bool has_inputs() const { return !m_.inputs.empty(); }
+  bool has_outputs() const { return !m_.outputs.empty(); }
+  std::string loads_call() const { return has_inputs() ? "applied_loads(k, s.inputs, l)" : "applied_loads(k, l)"; }
+
+  // Inputs: index constants, ranges and safe values; State gains `inputs`.
+  void input_declarations(std::ostringstream& o) const {
+    o << "// Commands step() applies (State::inputs), SI units; limits and safe values in kInputInfo.\n"
+      << "namespace input {\n";
+    for (size_t i = 0; i < m_.inputs.size(); ++i) {
+      const Input& in = m_.inputs[i];
+      o << "inline constexpr int " << in.name << " = " << i << ";  // " << input_type_name(in.type) << " "
+        << input_target(in) << ", " << (in.type == InputType::joint_force ? "N" : "N m") << "\n";
+    }
+    o << "}  // namespace input\n"
+      << "inline constexpr int kInputs = " << m_.inputs.size() << ";\n"
+      << "using Inputs = std::array<double, kInputs>;\n"
+      << "inline constexpr std::array<mbrt::InputInfo, kInputs> kInputInfo{{\n";
+    for (const Input& in : m_.inputs) {
+      o << "    {\"" << in.name << "\", \"" << input_type_name(in.type) << "\", \"" << input_target(in) << "\", "
+        << num(in.min) << ", " << num(in.max) << ", " << num(in.safe) << "},\n";
+    }
+    o << "}};\n\n";
+  }
+
+  // Outputs: one flat array of values; each signal's first index and count.
+  void output_declarations(std::ostringstream& o) const {
+    o << "// Signals outputs() computes, as one array of values; see kOutputInfo.\nnamespace output {\n";
+    int first = 0;
+    for (const Output& out : m_.outputs) {
+      o << "inline constexpr int " << out.name << " = " << first << ";  // " << output_type_name(out.type) << " of "
+        << output_source(out) << ", " << output_layout(out) << "\n";
+      first += output_count(out.type);
+    }
+    o << "}  // namespace output\n"
+      << "inline constexpr int kOutputSignals = " << m_.outputs.size() << ";\n"
+      << "inline constexpr int kOutputs = " << first << ";  // values\n"
+      << "using Outputs = std::array<double, kOutputs>;\n"
+      << "inline constexpr std::array<mbrt::OutputInfo, kOutputSignals> kOutputInfo{{\n";
+    first = 0;
+    for (const Output& out : m_.outputs) {
+      o << "    {\"" << out.name << "\", \"" << output_type_name(out.type) << "\", \"" << output_source(out) << "\", "
+        << first << ", " << output_count(out.type) << "},\n";
+      first += output_count(out.type);
+    }
+    o << "}};\n\n";
+  }
+
+  std::string input_target(const Input& in) const {
+    if (in.type == InputType::motor_torque) return m_.body_name(in.body1) + "-" + m_.body_name(in.body2);
+    return m_.joints[static_cast<size_t>(in.joint)].name;
+  }
+  std::string output_source(const Output& out) const {
+    return out.joint >= 0 ? m_.joints[static_cast<size_t>(out.joint)].name : m_.body_name(out.body);
+  }
+  bool revolute_output(const Output& out) const {
+    return m_.joints[static_cast<size_t>(out.joint)].type == JointType::revolute;
+  }
+  std::string output_layout(const Output& out) const {
+    switch (out.type) {
+      case OutputType::joint_position: return revolute_output(out) ? "rad" : "m";
+      case OutputType::joint_velocity: return revolute_output(out) ? "rad/s" : "m/s";
+      case OutputType::body_pose: return "x, y, z (m, world), e0..e3";
+      case OutputType::body_velocity: return "vx, vy, vz (m/s, world), wx, wy, wz (rad/s, body)";
+    }
+    return "";
+  }
+
   std::string header() const {
     std::ostringstream o;
     o << "// mbrt generated model '" << m_.name << "' from " << m_.file << "\n"
@@ -116,8 +183,10 @@ class Emitter {
     for (int j = 0; j < blocks(); ++j) {
       o << "    {\"" << jname(j) << "\", \"" << block(j).kernel << "\", " << first_row(j) << ", " << rows(j) << "},\n";
     }
-    o << "}};\n\n"
-      << "// Everything that changes from step to step; the caller owns it.\n"
+    o << "}};\n\n";
+    if (has_inputs()) input_declarations(o);
+    if (has_outputs()) output_declarations(o);
+    o << "// Everything that changes from step to step; the caller owns it.\n"
       << "struct State {\n"
       << "  double t = 0.0;\n"
       << "  std::array<mbrt::RigidState, kRigidBodies> rigid;     // see kBodyInfo\n"
@@ -127,6 +196,7 @@ class Emitter {
       << "  std::array<mbrt::Vec3, kParticles> particle_acceleration;\n"
       << "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n"
       << "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n"
+      << (has_inputs() ? "  Inputs inputs;  // applied by step(); initial_state() sets the safe values\n" : "")
       << "};\n\n"
       << "// The model file's initial state with consistent accelerations.\n"
       << "State initial_state() noexcept;\n\n"
@@ -136,6 +206,7 @@ class Emitter {
       << "mbrt::Energy energy(const State& s) noexcept;\n"
       << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept;\n"
       << "double quaternion_norm_error(const State& s) noexcept;  // max | |p| - 1 |\n\n"
+      << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept;\n\n" : "")
       << "}  // namespace mbrt::models::" << m_.name << "\n";
     return o.str();
   }
@@ -188,6 +259,16 @@ class Emitter {
           for (size_t k = 0; k < fn->polynomial.size(); ++k) o << (k ? ", " : "") << num(fn->polynomial[k]);
           o << "};  // c0 + c1 t + ...\n";
         }
+      }
+    }
+    if (has_inputs()) o << "\n// Input axes (body-1 axes) and, for forces, points (body axes).\n";
+    for (size_t i = 0; i < m_.inputs.size(); ++i) {
+      const Input& in = m_.inputs[i];
+      const InputPlan& p = a_.inputs[i];
+      o << "const mbrt::Vec3 " << in.name << "_axis = " << vec3(p.axis1) << ";\n";
+      if (in.type == InputType::joint_force) {
+        o << "const mbrt::Vec3 " << in.name << "_s1 = " << vec3(p.s1) << ";\n"
+          << "const mbrt::Vec3 " << in.name << "_s2 = " << vec3(p.s2) << ";\n";
       }
     }
     o << "\n// Force elements in body axes.\n";
@@ -296,9 +377,9 @@ class Emitter {
   }
 
   void loads_stage(std::ostringstream& o) const {
-    o << "// (k) => (l): applied forces (world) and torques (body axes) per body,\n"
-      << "// gyroscopic torques included, and the elastic energy stored.\n"
-      << "void applied_loads(const Kinematics& k, Loads& l) noexcept {\n"
+    o << "// (k" << (has_inputs() ? ", u" : "") << ") => (l): applied forces (world) and torques (body axes) per body,\n"
+      << "// gyroscopic torques" << (has_inputs() ? " and inputs" : "") << " included, and the elastic energy stored.\n"
+      << "void applied_loads(const Kinematics& k, " << (has_inputs() ? "const Inputs& u, " : "") << "Loads& l) noexcept {\n"
       << "  l.w.fill(mbrt::Wrench{});\n  l.elastic_energy = 0.0;\n";
     for (size_t i = 0; i < m_.bodies.size(); ++i) {
       const BodyPlan& p = a_.bodies[i];
@@ -337,7 +418,27 @@ class Emitter {
           break;
       }
     }
+    for (size_t i = 0; i < m_.inputs.size(); ++i) input_load(o, m_.inputs[i], a_.inputs[i]);
     o << "}\n\n";
+  }
+
+  // A torque input: value times the body-1 axis, on body2 with the reaction
+  // on body1. A force input: along the axis, at the joint point of each body;
+  // both points lie on the axis line, so the pair has no moment.
+  void input_load(std::ostringstream& o, const Input& in, const InputPlan& p) const {
+    const std::string n = in.name;
+    o << "  {  // input " << n << ": " << input_type_name(in.type) << " " << input_target(in) << " on "
+      << m_.body_name(p.body2) << ", reaction on " << m_.body_name(p.body1) << "\n";
+    if (in.type == InputType::joint_force) {
+      o << "    const mbrt::Vec3 f = u[input::" << n << "] * (" << pose(p.body1) << ".R * " << n << "_axis);\n";
+      if (p.body2 != kGround) o << "    mbrt::add_point_force(l.w[" << p.body2 << "], " << pose(p.body2) << ", " << n << "_s2, f);\n";
+      if (p.body1 != kGround) o << "    mbrt::add_point_force(l.w[" << p.body1 << "], " << pose(p.body1) << ", " << n << "_s1, -f);\n";
+    } else {
+      o << "    const mbrt::Vec3 t = u[input::" << n << "] * (" << pose(p.body1) << ".R * " << n << "_axis);\n";
+      if (p.body2 != kGround) o << "    l.w[" << p.body2 << "].tau += " << pose(p.body2) << ".R.transpose() * t;\n";
+      if (p.body1 != kGround) o << "    l.w[" << p.body1 << "].tau -= " << pose(p.body1) << ".R.transpose() * t;\n";
+    }
+    o << "  }\n";
   }
 
   void constraint_stage(std::ostringstream& o) const {
@@ -616,13 +717,18 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
         o << "  " << st << " = {" << vec3(b.position) << ", " << vec3(b.velocity) << "};  // " << b.name << "\n";
       }
     }
+    if (has_inputs()) {
+      o << "  s.inputs = {";
+      for (size_t i = 0; i < m_.inputs.size(); ++i) o << (i ? ", " : "") << num(m_.inputs[i].safe);
+      o << "};  // safe values\n";
+    }
     o << R"(  Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
   constraint_rows(k, s.t, c);
   factorize(c);
   Loads l;
-  applied_loads(k, l);
+  )" << loads_call() << R"(;
   constraint_forces(c, l, stacked_phi(c), s);
   return s;
 }
@@ -660,7 +766,7 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
   for (int stage = 0; stage < kStages; ++stage) {
     set_velocities(u, s);
     k.vel = velocities_of(s);
-    applied_loads(k, l);
+    )" << loads_call() << R"(;
     implicit_stage(c, l, u_half, u);
   }
   set_velocities(u, s);
@@ -685,7 +791,7 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
   for (int stage = 0; stage < kStages; ++stage) {
     set_velocities(u, s);
     k.vel = velocities_of(s);
-    applied_loads(k, l);
+    )" << loads_call() << R"(;
     constraint_forces(c, l, phi, s);
     const BodyVectors a = accelerations_of(s);
     for (int b = 0; b < kBodies; ++b) u[b] = u_half[b] + (0.5 * h) * a[b];
@@ -727,7 +833,7 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
   Kinematics k;
   kinematics(s, k);
   Loads l;
-  applied_loads(k, l);
+  )" << loads_call() << R"(;
   const BodyVectors u = generalized_velocities(s);
   mbrt::Energy e{0.0, l.elastic_energy};
 )";
@@ -760,6 +866,30 @@ double quaternion_norm_error(const State& s) noexcept {
 )";
   }
 
+  void outputs_function(std::ostringstream& o) const {
+    o << "void outputs(const State& s, Outputs& y) noexcept {\n  Kinematics k;\n  kinematics(s, k);\n";
+    for (const Output& out : m_.outputs) {
+      const std::string at = "y.data() + output::" + out.name;
+      if (out.joint >= 0) {
+        const Joint& j = m_.joints[static_cast<size_t>(out.joint)];
+        o << "  y[output::" << out.name << "] = mbrt::" << (revolute_output(out) ? "revolute" : "prismatic")
+          << "_coordinate(" << j.name << "_frame, " << motion(j.body1) << ", " << motion(j.body2) << ")."
+          << (out.type == OutputType::joint_position ? "position" : "velocity") << ";\n";
+        continue;
+      }
+      const std::string st = state_of(out.body);
+      const bool rigid = plan(out.body).rigid;
+      if (out.type == OutputType::body_pose) {
+        o << "  Eigen::Map<mbrt::Vec3>(" << at << ") = " << st << ".r;\n"
+          << "  Eigen::Map<mbrt::Vec4>(" << at << " + 3) = " << (rigid ? st + ".p" : "mbrt::Vec4(1.0, 0.0, 0.0, 0.0)") << ";\n";
+      } else {
+        o << "  Eigen::Map<mbrt::Vec3>(" << at << ") = " << st << ".v;\n"
+          << "  Eigen::Map<mbrt::Vec3>(" << at << " + 3) = " << (rigid ? st + ".w" : "mbrt::Vec3::Zero()") << ";\n";
+      }
+    }
+    o << "}\n\n";
+  }
+
   std::string source() const {
     std::ostringstream o;
     o << "// mbrt generated model '" << m_.name << "': " << m_.bodies.size() << " bodies (" << a_.rigid_count
@@ -790,6 +920,7 @@ double quaternion_norm_error(const State& s) noexcept {
     initial_state_function(o);
     step_function(o);
     diagnostics(o);
+    if (has_outputs()) outputs_function(o);
     o << "}  // namespace mbrt::models::" << m_.name << "\n";
     return o.str();
   }
