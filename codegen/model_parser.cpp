@@ -41,7 +41,7 @@ const Keys kForceKeys = {"type", "body1", "body2", "point1", "point2", "stiffnes
 const Keys kInputKeys = {"name", "type", "joint", "body1", "body2", "axis", "min", "max", "safe"};
 const Keys kOutputKeys = {"name", "type", "joint", "body"};
 // Fields every generated LCM message has besides the signals.
-const Keys kMessageFields = {"utime", "seq", "state_utime", "state_seq", "t"};
+const Keys kMessageFields = {"utime", "seq", "state_utime", "command_seq", "t"};
 const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
                           "stabilization", "baumgarte_alpha", "baumgarte_beta", "corrections"};
 
