@@ -41,7 +41,7 @@ inline const char* to_string(CommandVerdict v) noexcept {
 
 struct CommandCounts {
   std::array<std::int64_t, kCommandVerdicts> by_verdict{};  // [applied] is the number applied
-  std::int64_t missing = 0;     // sequence numbers skipped between applied commands
+  std::int64_t missing = 0;     // sequence numbers never seen: gaps between commands that decoded
   std::int64_t stale = 0;       // times the inputs fell back to the safe values
   std::int64_t safe_cycles = 0; // cycles run on the safe values (including before the first command)
 
@@ -73,8 +73,10 @@ class CommandGate {
   CommandVerdict offer(std::int64_t seq, std::int64_t age_ns, const Values& values, std::int64_t now_ns) noexcept {
     const CommandVerdict v = judge(seq, age_ns, values, now_ns);
     ++counts_.by_verdict[static_cast<std::size_t>(v)];
+    const bool ordered = has_sequence(now_ns);
+    if (ordered && seq > last_seen_seq_ + 1) counts_.missing += seq - last_seen_seq_ - 1;
+    if (!ordered || seq > last_seen_seq_) last_seen_seq_ = seq;
     if (v != CommandVerdict::applied) return v;
-    if (has_sequence(now_ns) && seq > last_seq_ + 1) counts_.missing += seq - last_seq_ - 1;
     last_seq_ = seq;
     last_applied_ns_ = now_ns;
     ever_applied_ = true;
@@ -124,7 +126,8 @@ class CommandGate {
   Values safe_{};
   Values current_{};
   CommandCounts counts_;
-  std::int64_t last_seq_ = -1;
+  std::int64_t last_seq_ = -1;       // of the last applied command
+  std::int64_t last_seen_seq_ = -1;  // highest of the current sequence, applied or not
   std::int64_t last_applied_ns_ = 0;
   bool ever_applied_ = false;
   bool fresh_ = false;
