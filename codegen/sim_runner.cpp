@@ -96,11 +96,14 @@ ProgramPlan plan(Program program) {
   return {program == Program::hil ? "hil" : "pd_controller", files, true};
 }
 
-std::string compile_flags() {
+std::string compile_flags(const ProgramPlan& p) {
   std::string flags = toolchain::kFlags;
 #if defined(__x86_64__)
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) flags += std::string(" ") + toolchain::kVectorFlags;
 #endif
+  // lcm_coretypes.h reads doubles through int64_t pointers: with strict
+  // aliasing, optimized builds encode stale bytes.
+  if (p.lcm) flags += " -fno-strict-aliasing";
   return flags;
 }
 
@@ -111,7 +114,7 @@ std::string content_key(const GeneratedCode& code, const ProgramPlan& p) {
   h = fnv1a(code.source, h);
   for (const GeneratedFile& f : code.interface_files) h = fnv1a(f.name + f.text, h);
   for (const fs::path& f : p.sources) h = fnv1a(f.string() + read_file(f), h);
-  h = fnv1a(std::string(toolchain::kCompiler) + compile_flags(), h);
+  h = fnv1a(std::string(toolchain::kCompiler) + compile_flags(p) + (p.lcm ? toolchain::kLcmLibrary : ""), h);
   for (const fs::path& dir : sources().includes) {
     for (const auto& e : fs::recursive_directory_iterator(dir / "mbrt")) {
       if (e.is_regular_file()) h = fnv1a(e.path().filename().string() + read_file(e.path()), h);
@@ -145,16 +148,14 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
   const fs::path tmp = dir.string() + ".tmp" + std::to_string(::getpid());
   fs::create_directories(tmp);
   write_generated(g.code, tmp.string());
-  std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags() + " -I" + quote(tmp.string());
+  std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags(p) + " -I" + quote(tmp.string());
   for (const fs::path& inc : sources().includes) cmd += " -I" + quote(inc.string());
   cmd += " -I" + quote(toolchain::kEigenInclude) + " -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name;
   if (p.lcm) {
     run_or_throw(std::string(toolchain::kLcmGen) + " -x --cpp-hpath " + quote(tmp.string()) + " " +
                      quote((tmp / (g.model.name + ".lcm")).string()),
                  "lcm-gen", tmp / "lcm-gen.log", options.verbose);
-    // lcm_coretypes.h reads doubles through int64_t pointers: with strict
-    // aliasing, optimized builds encode stale bytes.
-    cmd += " -fno-strict-aliasing -DMBRT_MODEL_LCM_HEADER='\"" + g.model.name + "_lcm.hpp\"'";
+    cmd += " -DMBRT_MODEL_LCM_HEADER='\"" + g.model.name + "_lcm.hpp\"'";
   } else {
     cmd += " -DMBRT_MODEL_HEADER='\"" + g.code.header_name + "\"'";
   }
