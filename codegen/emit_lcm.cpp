@@ -34,7 +34,7 @@ std::string lcm_types(const Model& m) {
     << "struct command_t\n{\n"
     << "    int64_t utime;        // wall clock when sent, microseconds\n"
     << "    int64_t seq;          // increasing; restarts are accepted after the stale timeout\n"
-    << "    int64_t state_utime;  // utime of the state message this command answers\n";
+    << "    int64_t state_utime;  // utime of the state message this command answers; its age counts from there\n";
   for (const Input& in : m.inputs) {
     o << "    double " << in.name << ";  // " << input_type_name(in.type) << ", range [" << in.min << ", " << in.max
       << "], safe " << in.safe << "\n";

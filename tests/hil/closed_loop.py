@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Closed-loop HIL scenarios: `mbrt hil` runs a model in its real-time loop,
 `mbrt stub` runs a PD controller for it in another process, both over LCM on
-loopback (run inside tests/hil/in_private_network.sh). Each scenario injects
+loopback (run inside scripts/in-private-network). Each scenario injects
 one kind of fault and checks, from the two JSON reports, that the loop kept
 running, that nothing non-finite entered the state, that the simulator
 counted exactly what the controller did wrong, and that control resumed.
