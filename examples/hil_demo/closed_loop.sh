@@ -1,18 +1,20 @@
 #!/usr/bin/env bash
-# Runs the arm in mbrt's real-time loop at 1 kHz and a PD controller in its
-# own process, both on LCM URL $1, for $2 seconds, then prints the loop's
-# timing and the controller's tracking error. Reports go to directory $3.
+# Runs the arm in mbrt's real-time loop and a PD controller in its own
+# process, both on LCM URL $1, for $2 seconds, then prints the loop's timing
+# and the controller's tracking error. Reports go to directory $3. The loop
+# runs at $4 Hz (default 1000) with one step of 1/$4 s per cycle.
 set -euo pipefail
-url=$1 seconds=$2 out=$3
+url=$1 seconds=$2 out=$3 rate=${4:-1000}
 cd "$(dirname "$0")/../.."
 mbrt=${MBRT:-build/bin/mbrt}
 model=examples/hil_demo/arm3.yaml
 mkdir -p "$out"
 # Compile both programs before the clock starts (cached afterwards).
-"$mbrt" hil "$model" --lcm "$url" --duration 0 >/dev/null
+step=$(python3 -c "print(repr(1.0 / $rate))")
+"$mbrt" hil "$model" --h "$step" --lcm "$url" --rate "$rate" --duration 0 >/dev/null
 "$mbrt" stub "$model" --lcm "$url" --duration 0 >/dev/null
 
-"$mbrt" hil "$model" --lcm "$url" --rate 1000 --duration "$seconds" --report "$out/hil.json" >/dev/null &
+"$mbrt" hil "$model" --h "$step" --lcm "$url" --rate "$rate" --duration "$seconds" --report "$out/hil.json" >/dev/null &
 sim=$!
 sleep 0.3
 "$mbrt" stub "$model" --lcm "$url" --duration "$(python3 -c "print($seconds - 0.6)")" \
