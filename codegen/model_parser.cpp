@@ -664,16 +664,23 @@ void check_signal_name(const Value& name_value, const std::string& name, std::ma
   check_unique(name_value, name, "input or output", seen);
 }
 
+// The name and type every input and output starts with; returns the type as written.
+template <typename Enum>
+std::string read_signal_head(const Section& s, const std::vector<std::pair<std::string, Enum>>& types,
+                             std::map<std::string, int>& names_seen, std::string& name, Enum& type) {
+  const Value name_value = s.get("name");
+  name = read_identifier(name_value);
+  check_signal_name(name_value, name, names_seen);
+  const Value type_value = s.get("type");
+  type = read_type(type_value, types);
+  return type_value.node.Scalar();
+}
+
 Input parse_input(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
   const Section s(item, kInputKeys);
   Input in;
   in.where = item.where;
-  const Value name = s.get("name");
-  in.name = read_identifier(name);
-  check_signal_name(name, in.name, names_seen);
-  const Value type = s.get("type");
-  in.type = read_type(type, kInputTypes);
-  const std::string& type_name = type.node.Scalar();
+  const std::string type_name = read_signal_head(s, kInputTypes, names_seen, in.name, in.type);
   if (in.type == InputType::motor_torque) {
     s.restrict_to({"name", "type", "body1", "body2", "axis", "min", "max", "safe"}, "a motor_torque input");
     in.body1 = read_body_ref(s.get("body1"), model);
@@ -704,12 +711,7 @@ Output parse_output(const Value& item, const Model& model, std::map<std::string,
   const Section s(item, kOutputKeys);
   Output out;
   out.where = item.where;
-  const Value name = s.get("name");
-  out.name = read_identifier(name);
-  check_signal_name(name, out.name, names_seen);
-  const Value type = s.get("type");
-  out.type = read_type(type, kOutputTypes);
-  const std::string& type_name = type.node.Scalar();
+  const std::string type_name = read_signal_head(s, kOutputTypes, names_seen, out.name, out.type);
   if (out.type == OutputType::joint_position || out.type == OutputType::joint_velocity) {
     s.restrict_to({"name", "type", "joint"}, "a " + type_name + " output");
     out.joint = read_joint_ref(s.get("joint"), model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");

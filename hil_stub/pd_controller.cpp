@@ -49,10 +49,7 @@ struct Faults {
 };
 
 struct Options {
-  std::string lcm_url;
-  double rate_hz = 500.0;
-  double duration_s = 5.0;
-  std::string report;
+  LinkOptions link{"", 500.0, 5.0, "", model::kStateChannel, model::kCommandChannel};
   std::vector<double> kp{40.0}, kd{4.0};
   double amplitude = 0.5, frequency = 0.5;
   double settle_s = 1.0;
@@ -60,8 +57,6 @@ struct Options {
   unsigned seed = 1;
   double crash_after_s = -1.0;
   Faults faults;
-  std::string state_channel = model::kStateChannel;
-  std::string command_channel = model::kCommandChannel;
 };
 
 // "a" or "a,b,c": gains for all joints, or one per controlled joint.
@@ -92,11 +87,8 @@ Options parse(int argc, char** argv) {
   ProgramOptions args(argc, argv, kUsage);
   while (args.next()) {
     const std::string a = args.name();
-    if (a == "--lcm") o.lcm_url = args.text();
-    else if (a == "--rate") o.rate_hz = args.number();
-    else if (a == "--duration") o.duration_s = args.number();
-    else if (a == "--report") o.report = args.text();
-    else if (a == "--kp") o.kp = gains(args);
+    if (read_link_option(args, o.link)) continue;
+    if (a == "--kp") o.kp = gains(args);
     else if (a == "--kd") o.kd = gains(args);
     else if (a == "--amplitude") o.amplitude = args.number();
     else if (a == "--frequency") o.frequency = args.number();
@@ -111,12 +103,9 @@ Options parse(int argc, char** argv) {
     else if (a == "--garbage") o.faults.garbage = probability(args);
     else if (a == "--nan") o.faults.nan = probability(args);
     else if (a == "--out-of-range") o.faults.out_of_range = probability(args);
-    else if (a == "--state-channel") o.state_channel = args.text();
-    else if (a == "--command-channel") o.command_channel = args.text();
     else args.fail("unknown option '" + a + "'");
   }
-  if (o.lcm_url.empty()) args.fail("--lcm URL is required");
-  if (!(o.rate_hz > 0.0)) args.fail("--rate must be > 0");
+  check_link_options(args, o.link);
   if (!(o.delay_us >= 0.0) || !(o.jitter_us >= 0.0)) args.fail("--delay-us and --jitter-us must be >= 0");
   return o;
 }
@@ -246,7 +235,7 @@ void send_command(Controller& c, LcmBridge& bridge, long seq) {
   }
   m.utime = realtime_us();
   std::vector<unsigned char> bytes = encode(m);
-  const char* channel = c.opt.command_channel.c_str();
+  const char* channel = c.opt.link.command_channel.c_str();
   if (c.chance(c.opt.faults.garbage)) {
     std::uniform_int_distribution<int> byte(0, 255);
     for (unsigned char& b : bytes) b = static_cast<unsigned char>(byte(c.random));
@@ -290,10 +279,10 @@ std::string report(const Controller& c) {
 
 int run(const Options& opt) {
   Controller c(opt);
-  LcmBridge bridge(opt.lcm_url, opt.state_channel);
-  const std::int64_t period_ns = std::llround(1e9 / opt.rate_hz);
+  LcmBridge bridge(opt.link.lcm_url, opt.link.state_channel);
+  const std::int64_t period_ns = std::llround(1e9 / opt.link.rate_hz);
   const std::int64_t start = monotonic_ns();
-  const std::int64_t end = start + std::llround(opt.duration_s * 1e9);
+  const std::int64_t end = start + std::llround(opt.link.duration_s * 1e9);
   std::int64_t next = start + period_ns;
   long seq = 0;
   while (monotonic_ns() < end) {
@@ -309,7 +298,7 @@ int run(const Options& opt) {
     if (c.have_state) send_command(c, bridge, seq++);
   }
   const std::string json = report(c);
-  if (!write_report(json, opt.report)) return 1;
+  if (!write_report(json, opt.link.report)) return 1;
   return 0;
 }
 

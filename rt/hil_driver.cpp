@@ -35,12 +35,7 @@ constexpr const char* kUsage = R"(usage: hil --lcm URL [--rate HZ] [--duration S
 constexpr int kMaxCommandsPerCycle = 32;
 
 struct Options {
-  std::string lcm_url;
-  double rate_hz = 1000.0;
-  double duration_s = 5.0;
-  std::string report;
-  std::string state_channel = model::kStateChannel;
-  std::string command_channel = model::kCommandChannel;
+  LinkOptions link{"", 1000.0, 5.0, "", model::kStateChannel, model::kCommandChannel};
   double command_timeout_s = 0.05;
   double max_command_age_s = 0.05;
   long publish_every = 1;
@@ -52,27 +47,20 @@ Options parse(int argc, char** argv) {
   ProgramOptions args(argc, argv, kUsage);
   while (args.next()) {
     const std::string a = args.name();
-    if (a == "--lcm") o.lcm_url = args.text();
-    else if (a == "--rate") o.rate_hz = args.number();
-    else if (a == "--duration") o.duration_s = args.number();
-    else if (a == "--report") o.report = args.text();
-    else if (a == "--state-channel") o.state_channel = args.text();
-    else if (a == "--command-channel") o.command_channel = args.text();
-    else if (a == "--command-timeout") o.command_timeout_s = args.number();
+    if (read_link_option(args, o.link)) continue;
+    if (a == "--command-timeout") o.command_timeout_s = args.number();
     else if (a == "--max-command-age") o.max_command_age_s = args.number();
     else if (a == "--publish-every") o.publish_every = args.integer();
     else if (a == "--fifo") o.realtime.fifo_priority = static_cast<int>(args.integer());
     else if (a == "--cpu") o.realtime.cpu = static_cast<int>(args.integer());
     else args.fail("unknown option '" + a + "'");
   }
-  if (o.lcm_url.empty()) args.fail("--lcm URL is required");
-  if (!(o.rate_hz > 0.0)) args.fail("--rate must be > 0");
-  if (!(o.duration_s >= 0.0)) args.fail("--duration must be >= 0");
+  check_link_options(args, o.link);
   if (!(o.command_timeout_s > 0.0) || !(o.max_command_age_s > 0.0)) args.fail("command timeouts must be > 0");
   if (o.publish_every < 1) args.fail("--publish-every must be >= 1");
-  const double steps = 1.0 / (o.rate_hz * model::kStep);
+  const double steps = 1.0 / (o.link.rate_hz * model::kStep);
   if (std::abs(steps - std::round(steps)) > 1e-9 * steps || std::round(steps) < 1) {
-    args.fail("--rate " + std::to_string(o.rate_hz) + " Hz is not 1 / (k h) for the model's step h = " +
+    args.fail("--rate " + std::to_string(o.link.rate_hz) + " Hz is not 1 / (k h) for the model's step h = " +
               std::to_string(model::kStep) + " s; pick a rate that divides 1/h, or regenerate with --h");
   }
   return o;
@@ -135,16 +123,16 @@ int run(const Options& opt) {
   Loop loop({seconds_to_ns(opt.command_timeout_s), seconds_to_ns(opt.max_command_age_s)});
   HilRunStats& stats = loop.stats;
   stats.model = model::kName;
-  stats.transport = "lcm " + opt.lcm_url;
-  stats.rate_hz = opt.rate_hz;
-  stats.steps_per_cycle = static_cast<int>(std::lround(1.0 / (opt.rate_hz * model::kStep)));
+  stats.transport = "lcm " + opt.link.lcm_url;
+  stats.rate_hz = opt.link.rate_hz;
+  stats.steps_per_cycle = static_cast<int>(std::lround(1.0 / (opt.link.rate_hz * model::kStep)));
   loop.buffer.resize(static_cast<std::size_t>(loop.state_message.getEncodedSize()));
 
-  LcmBridge bridge(opt.lcm_url, opt.command_channel);
+  LcmBridge bridge(opt.link.lcm_url, opt.link.command_channel);
   stats.realtime = prepare_realtime(opt.realtime);
 
-  const std::int64_t cycles = std::llround(opt.duration_s * opt.rate_hz);
-  PeriodicClock clock(std::llround(1e9 / opt.rate_hz));
+  const std::int64_t cycles = std::llround(opt.link.duration_s * opt.link.rate_hz);
+  PeriodicClock clock(std::llround(1e9 / opt.link.rate_hz));
   for (std::int64_t cycle = 0; cycle < cycles; ++cycle) {
     stats.wake_jitter_ns.record(clock.wait_for_release());
     bridge.receive(&on_command, &loop, kMaxCommandsPerCycle);
@@ -152,7 +140,7 @@ int run(const Options& opt) {
     const std::int64_t step_start = monotonic_ns();
     for (int k = 0; k < stats.steps_per_cycle; ++k) stats.step_failures += model::step(loop.state) != mbrt::StepStatus::ok;
     stats.step_ns.record(monotonic_ns() - step_start);
-    if (cycle % opt.publish_every == 0) publish_state(loop, bridge, opt.state_channel, cycle);
+    if (cycle % opt.publish_every == 0) publish_state(loop, bridge, opt.link.state_channel, cycle);
     const std::int64_t end = monotonic_ns();
     stats.cycle_ns.record(end - clock.release_ns());
     clock.finish_cycle(end);
@@ -164,7 +152,7 @@ int run(const Options& opt) {
   stats.state_finite = finite(loop.state);
 
   const std::string json = to_json(stats);
-  if (!write_report(json, opt.report)) return 1;
+  if (!write_report(json, opt.link.report)) return 1;
   return stats.state_finite ? 0 : 3;
 }
 

@@ -39,6 +39,24 @@ void ProgramOptions::fail(const std::string& why) const {
   std::exit(2);
 }
 
+bool read_link_option(ProgramOptions& args, LinkOptions& link) {
+  const std::string a = args.name();
+  if (a == "--lcm") link.lcm_url = args.text();
+  else if (a == "--rate") link.rate_hz = args.number();
+  else if (a == "--duration") link.duration_s = args.number();
+  else if (a == "--report") link.report = args.text();
+  else if (a == "--state-channel") link.state_channel = args.text();
+  else if (a == "--command-channel") link.command_channel = args.text();
+  else return false;
+  return true;
+}
+
+void check_link_options(ProgramOptions& args, const LinkOptions& link) {
+  if (link.lcm_url.empty()) args.fail("--lcm URL is required");
+  if (!(link.rate_hz > 0.0)) args.fail("--rate must be > 0");
+  if (!(link.duration_s >= 0.0)) args.fail("--duration must be >= 0");
+}
+
 bool write_report(const std::string& json, const std::string& path) {
   std::fputs(json.c_str(), stdout);
   if (path.empty()) return true;

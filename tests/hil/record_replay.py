@@ -16,19 +16,12 @@ import subprocess
 import sys
 import time
 
-LCM_URL = "udpm://239.255.76.67:7667?ttl=0"
+from hil_test import GAINS, LCM_URL, check, compile_programs, environment, finish
+
 SYNC = 0xEDA1DA01
 
 mbrt, model_path, work = sys.argv[1:4]
-os.makedirs(work, exist_ok=True)
-env = dict(os.environ, MBRT_CACHE_DIR=os.path.join(work, "cache"))
-failures = []
-
-
-def check(condition, what):
-    print(("ok   " if condition else "FAIL ") + what)
-    if not condition:
-        failures.append(what)
+env = environment(work)
 
 
 def read_log(path):
@@ -60,7 +53,7 @@ def stop(process):
 
 def stub(report, duration):
     return subprocess.Popen([mbrt, "stub", model_path, "--lcm", LCM_URL, "--duration", str(duration),
-                             "--kp", "200,60,10", "--kd", "20,6,1", "--report", report],
+                             *GAINS, "--report", report],
                             env=env, stdout=subprocess.DEVNULL)
 
 
@@ -75,9 +68,7 @@ state_t = importlib.import_module(f"{name}_lcm.state_t").state_t
 command_t = importlib.import_module(f"{name}_lcm.command_t").command_t
 state_channel, command_channel = f"{name}_STATE", f"{name}_COMMAND"
 
-for command in ("hil", "stub"):  # compile before anything is timed
-    subprocess.run([mbrt, command, model_path, "--lcm", LCM_URL, "--duration", "0"], env=env,
-                   stdout=subprocess.DEVNULL, check=True)
+compile_programs(mbrt, model_path, env)
 
 # 1. Record a closed-loop run.
 recorded = os.path.join(work, "run.lcmlog")
@@ -120,4 +111,4 @@ check(len(matched) > 0.3 * len(commands),
 same = all(all(getattr(c, f) == getattr(original[c.state_utime], f) for f in fields) for c in matched)
 check(same, f"its commands equal the recorded ones, field by field ({', '.join(fields)})")
 
-sys.exit(1 if failures else 0)
+finish()
