@@ -13,6 +13,7 @@
 // Other inputs get their safe value. The report gives the tracking error
 // over the states received after the first --settle seconds of control.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
