@@ -40,7 +40,7 @@ def start(command, name, *args):
     return subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL), report
 
 
-def finish(process, report, expect_code=0):
+def wait_for(process, report, expect_code=0):
     code = process.wait(timeout=600)
     check(code == expect_code, f"{os.path.basename(report)}: exit code {code}, expected {expect_code}")
     if expect_code != 0:
@@ -60,14 +60,14 @@ def run_pair(*faults, crash_after=None):
     controllers = []
     if crash_after is None:
         s, r = stub("stub", STUB_S, *faults)
-        controllers.append(finish(s, r))
+        controllers.append(wait_for(s, r))
     else:
         s, r = stub("crashing_stub", STUB_S, "--crash-after", str(crash_after))
-        finish(s, r, expect_code=3)
+        wait_for(s, r, expect_code=3)
         time.sleep(TIMEOUT_S + 0.3)  # past the stale timeout: the loop falls back to safe values
         s, r = stub("restarted_stub", 2.2)
-        controllers.append(finish(s, r))
-    return finish(sim, sim_report), controllers[-1]
+        controllers.append(wait_for(s, r))
+    return wait_for(sim, sim_report), controllers[-1]
 
 
 def check_loop(sim):
