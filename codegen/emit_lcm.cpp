@@ -75,6 +75,11 @@ std::string packing(const Model& m) {
     }
     o << "}\n\n";
   };
+  o << "// Decodes a whole message: false for another type (fingerprint), a\n"
+    << "// truncated message or trailing bytes.\n"
+    << "template <class Message>\n"
+    << "inline bool decode_exactly(const void* data, int size, Message& m) noexcept {\n"
+    << "  return m.decode(data, 0, size) == size;\n}\n\n";
   copy("pack_outputs(const Outputs& y, StateMessage& m)", true, true);
   copy("unpack_outputs(const StateMessage& m, Outputs& y)", false, true);
   copy("pack_inputs(const Inputs& u, CommandMessage& m)", true, false);

@@ -201,7 +201,7 @@ struct Controller {
 
 void on_state(const void* data, int size, void* context) {
   Controller& c = *static_cast<Controller*>(context);
-  if (c.state.decode(data, 0, size) != size) return;
+  if (!model::decode_exactly(data, size, c.state)) return;
   if (!c.have_state) c.first_state_t = c.state.t;
   c.have_state = true;
   ++c.states_received;

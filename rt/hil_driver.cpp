@@ -92,7 +92,7 @@ struct Loop {
 // then let the gate judge it.
 void on_command(const void* data, int size, void* context) {
   Loop& loop = *static_cast<Loop*>(context);
-  if (loop.command_message.decode(data, 0, size) != size) {
+  if (!model::decode_exactly(data, size, loop.command_message)) {
     loop.gate.reject_malformed();
     return;
   }
