@@ -1,7 +1,8 @@
 // One LCM connection: publishes encoded messages and delivers those of one
 // subscribed channel to a handler, without blocking unless asked to. The
 // connection is made at start-up (and throws there); publish and receive
-// allocate nothing in this code and never throw.
+// never throw, and allocate nothing in this code (liblcm's own buffers
+// are its business).
 #pragma once
 
 #include <string>
