@@ -4,9 +4,9 @@
 //   -DMBRT_MODEL_LCM_HEADER="<name>_lcm.hpp" -DMBRT_MODEL_NAMESPACE=mbrt::models::<name>
 //
 // Each cycle: wait for the release, take the waiting commands (validated by
-// the command gate), step the model, publish its outputs. mbrt's part of the
-// cycle allocates nothing after start-up (test_step_allocates_nothing); the
-// report is written after the loop.
+// the command gate), step the model, publish its outputs. The cycle
+// allocates nothing after start-up (test_step_allocates_nothing,
+// test_lcm_allocates_nothing); the report is written after the loop.
 #include <cmath>
 #include <cstdio>
 #include <string>

@@ -1,12 +1,10 @@
-// step() makes no heap allocation: malloc itself is interposed (Eigen's
-// temporaries call malloc, not operator new) and counted while armed. The
-// same holds for the HIL loop's per-cycle work around the step: outputs,
-// packing and encoding the state message, decoding and unpacking a command,
-// the command gate and the timing histogram.
+// step() makes no heap allocation (allocation_counter.hpp interposes
+// malloc). The same holds for the HIL loop's per-cycle work around the
+// step: outputs, packing and encoding the state message, decoding and
+// unpacking a command, the command gate and the timing histogram.
 #include <doctest/doctest.h>
 
-#include <cstddef>
-#include <cstdlib>
+#include <cmath>
 #include <vector>
 
 #include <mbrt/rt/command_gate.hpp>
@@ -14,61 +12,9 @@
 
 #include "a01_pendulum.hpp"
 #include "actuated_lcm.hpp"
+#include "allocation_counter.hpp"
 #include "four_bar.hpp"
 #include "heavy_top.hpp"
-
-extern "C" {
-void* __libc_malloc(size_t);
-void* __libc_calloc(size_t, size_t);
-void* __libc_realloc(void*, size_t);
-void* __libc_memalign(size_t, size_t);
-void __libc_free(void*);
-}
-
-namespace {
-bool armed = false;
-long allocations = 0;
-
-void count() {
-  if (armed) ++allocations;
-}
-
-// Counts allocations inside its scope.
-class AllocationCounter {
- public:
-  AllocationCounter() {
-    allocations = 0;
-    armed = true;
-  }
-  ~AllocationCounter() { armed = false; }
-  long count() const { return allocations; }
-};
-}  // namespace
-
-extern "C" {
-void* malloc(size_t n) {
-  count();
-  return __libc_malloc(n);
-}
-void* calloc(size_t n, size_t m) {
-  count();
-  return __libc_calloc(n, m);
-}
-void* realloc(void* p, size_t n) {
-  count();
-  return __libc_realloc(p, n);
-}
-void* aligned_alloc(size_t a, size_t n) {
-  count();
-  return __libc_memalign(a, n);
-}
-int posix_memalign(void** p, size_t a, size_t n) {
-  count();
-  *p = __libc_memalign(a, n);
-  return *p ? 0 : 12;
-}
-void free(void* p) { __libc_free(p); }
-}
 
 TEST_CASE("the allocation counter sees heap allocations") {
   long seen = 0;

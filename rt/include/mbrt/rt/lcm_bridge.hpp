@@ -1,8 +1,8 @@
 // One LCM connection: publishes encoded messages and delivers those of one
 // subscribed channel to a handler, without blocking unless asked to. The
 // connection is made at start-up (and throws there); publish and receive
-// never throw, and allocate nothing in this code (liblcm's own buffers
-// are its business).
+// never throw and, once warmed up, allocate nothing, liblcm included
+// (test_lcm_allocates_nothing).
 #pragma once
 
 #include <string>
