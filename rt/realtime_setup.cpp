@@ -6,6 +6,7 @@
 
 #include <sched.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 
 namespace mbrt::rt {
 
@@ -30,8 +31,13 @@ RealtimeStatus prepare_realtime(const RealtimeOptions& options) {
   RealtimeStatus status;
   status.memory_locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
   if (!status.memory_locked) {
-    warn(status, std::string("mlockall failed (") + std::strerror(errno) +
-                     "): pages may be swapped or faulted in during the loop; raise RLIMIT_MEMLOCK (ulimit -l)");
+    const std::string why = std::strerror(errno);
+    rlimit limit{};
+    getrlimit(RLIMIT_MEMLOCK, &limit);
+    const std::string allowed =
+        limit.rlim_cur == RLIM_INFINITY ? "unlimited" : std::to_string(limit.rlim_cur / 1024) + " KiB";
+    warn(status, "mlockall failed (" + why + "; RLIMIT_MEMLOCK " + allowed +
+                     "): pages may be swapped or faulted in during the loop; raise it with ulimit -l");
   }
   prefault_stack();
   if (options.cpu >= 0) {
