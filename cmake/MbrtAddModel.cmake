@@ -1,15 +1,17 @@
 # mbrt_add_model(<target> MODEL <model.yaml>
-#                [NAME <name>] [SCHEME <scheme>] [STEP <h>] [EULER_UPDATES <k>] [PROJECT_INITIAL]
+#                [NAME <name>] [SCHEME <scheme>] [STEP <h>] [EULER_UPDATES <k>] [PROJECT_INITIAL] [LCM]
 #                [GEN_OPTIONS <mbrt gen options>...])
 #
 # Generates the model's step with `mbrt gen` at build time (again whenever the
 # model file or the generator changes) and adds it as a static library
 # <target>. Include "<name>.hpp" (name from the model file, or NAME to build
 # several variants of one model into one program) and call
-# mbrt::models::<name>::step(). GEN_OPTIONS passes further `mbrt gen` options
-# (e.g. --ali3p-projection cuadrado).
+# mbrt::models::<name>::step(). With LCM (models with inputs and outputs),
+# lcm-gen also runs on the model's message types and "<name>_lcm.hpp" packs
+# Outputs and Inputs into them; the target then links liblcm. GEN_OPTIONS
+# passes further `mbrt gen` options (e.g. --ali3p-projection cuadrado).
 function(mbrt_add_model target)
-  cmake_parse_arguments(ARG "PROJECT_INITIAL" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
+  cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "mbrt_add_model(${target}): MODEL <file.yaml> is required")
   endif()
@@ -45,14 +47,29 @@ function(mbrt_add_model target)
   list(APPEND options ${ARG_GEN_OPTIONS})
 
   set(dir "${CMAKE_CURRENT_BINARY_DIR}/mbrt_models/${target}")
+  set(outputs "${dir}/${name}.hpp" "${dir}/${name}.cpp")
+  set(lcm_gen "")
+  if(ARG_LCM)
+    find_program(LCM_GEN lcm-gen REQUIRED)
+    find_library(LCM_LIBRARY lcm REQUIRED)
+    list(APPEND outputs "${dir}/${name}_lcm.hpp" "${dir}/${name}_lcm/state_t.hpp" "${dir}/${name}_lcm/command_t.hpp")
+    set(lcm_gen COMMAND ${LCM_GEN} -x --cpp-hpath "${dir}" "${dir}/${name}.lcm")
+  endif()
   add_custom_command(
-    OUTPUT "${dir}/${name}.hpp" "${dir}/${name}.cpp"
+    OUTPUT ${outputs}
     COMMAND mbrt::mbrt_cli gen "${model}" -o "${dir}" ${options}
+    ${lcm_gen}
     DEPENDS "${model}" mbrt::mbrt_cli
     COMMENT "mbrt: generating ${name} from ${ARG_MODEL}"
     VERBATIM)
-  add_library(${target} STATIC "${dir}/${name}.cpp" "${dir}/${name}.hpp")
+  add_library(${target} STATIC ${outputs})
   target_include_directories(${target} PUBLIC "${dir}")
   target_link_libraries(${target} PUBLIC mbrt::mbrt)
+  if(ARG_LCM)
+    target_link_libraries(${target} PUBLIC ${LCM_LIBRARY})
+    # lcm_coretypes.h reads doubles through int64_t pointers: with strict
+    # aliasing, optimized builds encode stale bytes.
+    target_compile_options(${target} PUBLIC -fno-strict-aliasing)
+  endif()
   target_compile_features(${target} PUBLIC cxx_std_17)
 endfunction()

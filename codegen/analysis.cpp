@@ -273,6 +273,20 @@ Analysis analyse(const Model& model) {
     }
     a.forces.push_back(plan);
   }
+  for (size_t i = 0; i < model.inputs.size(); ++i) {
+    const Input& in = model.inputs[i];
+    if (in.type == InputType::motor_torque) {
+      if (is_particle(model, in.body1) || is_particle(model, in.body2)) {
+        throw ModelError(in.where, "inputs[" + std::to_string(i) + "]", "a motor_torque needs rigid bodies; a particle cannot take one");
+      }
+      a.inputs.push_back({in.body1, in.body2, initial_pose(model, in.body1).R.transpose() * in.axis});
+      continue;
+    }
+    // Joint inputs act along the joint's own axis, at its points.
+    const Joint& j = model.joints[static_cast<size_t>(in.joint)];
+    const mbrt::JointFrame& f = a.constraints[static_cast<size_t>(in.joint)].frame;
+    a.inputs.push_back({j.body1, j.body2, f.a1, f.s1, f.s2});
+  }
   a.pattern = factor_pattern(coupling(a.constraints));
 
   // Scheme parameters (docs/staggered-pcst.md, docs/schemes.md).

@@ -42,6 +42,17 @@ struct ForcePlan {
   Eigen::Vector3d point;      // force: body-frame point
 };
 
+// Where an input acts: a torque about axis1 (body-1 axes) on body2 with the
+// reaction on body1, or a force along axis1 at point s2 of body2 with the
+// reaction at point s1 of body1 (joint_force).
+struct InputPlan {
+  int body1;
+  int body2;
+  Eigen::Vector3d axis1;
+  Eigen::Vector3d s1 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d s2 = Eigen::Vector3d::Zero();
+};
+
 // Block pattern of the Cholesky factor of S, in elimination order. Blocks are
 // indexed by constraint block (Analysis::constraints).
 struct FactorPattern {
@@ -66,6 +77,7 @@ struct Analysis {
   int constraint_rows = 0;
   bool rheonomic = false;                    // drivers present: explicit time terms
   std::vector<ForcePlan> forces;
+  std::vector<InputPlan> inputs;  // same order as Model::inputs
   FactorPattern pattern;
   bool gravity = false;
   bool velocity_dependent_forces = false;  // gyroscopic or damping terms: two stages per step

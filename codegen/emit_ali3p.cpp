@@ -151,7 +151,7 @@ void Emitter::ali3p_step(std::ostringstream& o) const {
     constraint_rows(k, s.t, c);
     const Rows phi = stacked_phi(c);
     if (i > 0) lambda_star += kAlpha.cwiseProduct(phi);
-    applied_loads(k, l);
+    )" << loads_call() << R"(;
     positive = factorize(c, kTangentShift) && positive;
 )";
   o << "    newton_correction(c, l, lambda_star + kAlpha.cwiseProduct(phi), "
@@ -166,7 +166,7 @@ void Emitter::ali3p_step(std::ostringstream& o) const {
   s.ali3p_lambda_star = s.lambda;
 )";
   if (weighted) {
-    o << R"(  applied_loads(k, l);
+    o << "  " << loads_call() << R"(;
   s.ali3p_force = free_accelerations(l);
   for (mbrt::Vec6& v : s.ali3p_force) v = -v;
   subtract_constraint_forces(c, s.lambda, -1.0, s.ali3p_force);

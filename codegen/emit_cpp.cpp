@@ -41,8 +41,10 @@ std::string Emitter::header() const {
   for (int j = 0; j < blocks(); ++j) {
     o << "    {\"" << jname(j) << "\", \"" << block(j).kernel << "\", " << first_row(j) << ", " << rows(j) << "},\n";
   }
-  o << "}};\n\n"
-    << "// Everything that changes from step to step; the caller owns it.\n"
+  o << "}};\n\n";
+  if (has_inputs()) input_declarations(o);
+  if (has_outputs()) output_declarations(o);
+  o << "// Everything that changes from step to step; the caller owns it.\n"
     << "struct State {\n"
     << "  double t = 0.0;\n"
     << "  std::array<mbrt::RigidState, kRigidBodies> rigid;     // see kBodyInfo\n"
@@ -51,7 +53,8 @@ std::string Emitter::header() const {
     << "  std::array<mbrt::RigidAcceleration, kRigidBodies> rigid_acceleration;\n"
     << "  std::array<mbrt::Vec3, kParticles> particle_acceleration;\n"
     << "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n"
-    << "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n";
+    << "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n"
+    << (has_inputs() ? "  Inputs inputs;  // applied by step(); initial_state() sets the safe values\n" : "");
   if (scheme_kind() == Scheme::ali3p) {
     o << "  // ali3p: lambda* + alpha phi of the last step, the next one's start\n"
       << "  // (lambda adds the acceleration projection's part).\n"
@@ -70,6 +73,7 @@ std::string Emitter::header() const {
     << "mbrt::Energy energy(const State& s) noexcept;\n"
     << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept;\n"
     << "double quaternion_norm_error(const State& s) noexcept;  // max | |p| - 1 |\n\n"
+    << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept;\n\n" : "")
     << "}  // namespace mbrt::models::" << m_.name << "\n";
   return o.str();
 }
@@ -124,6 +128,16 @@ void Emitter::constants(std::ostringstream& o) const {
         for (size_t k = 0; k < fn->polynomial.size(); ++k) o << (k ? ", " : "") << num(fn->polynomial[k]);
         o << "};  // c0 + c1 t + ...\n";
       }
+    }
+  }
+  if (has_inputs()) o << "\n// Input axes (body-1 axes) and, for forces, points (body axes).\n";
+  for (size_t i = 0; i < m_.inputs.size(); ++i) {
+    const Input& in = m_.inputs[i];
+    const InputPlan& p = a_.inputs[i];
+    o << "const mbrt::Vec3 " << in.name << "_axis = " << vec3(p.axis1) << ";\n";
+    if (in.type == InputType::joint_force) {
+      o << "const mbrt::Vec3 " << in.name << "_s1 = " << vec3(p.s1) << ";\n"
+        << "const mbrt::Vec3 " << in.name << "_s2 = " << vec3(p.s2) << ";\n";
     }
   }
   o << "\n// Force elements in body axes.\n";
@@ -232,9 +246,9 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
 }
 
 void Emitter::loads_stage(std::ostringstream& o) const {
-  o << "// (k) => (l): applied forces (world) and torques (body axes) per body,\n"
-    << "// gyroscopic torques included, and the elastic energy stored.\n"
-    << "void applied_loads(const Kinematics& k, Loads& l) noexcept {\n"
+  o << "// (k" << (has_inputs() ? ", u" : "") << ") => (l): applied forces (world) and torques (body axes) per body,\n"
+    << "// gyroscopic torques" << (has_inputs() ? " and inputs" : "") << " included, and the elastic energy stored.\n"
+    << "void applied_loads(const Kinematics& k, " << (has_inputs() ? "const Inputs& u, " : "") << "Loads& l) noexcept {\n"
     << "  l.w.fill(mbrt::Wrench{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const BodyPlan& p = a_.bodies[i];
@@ -273,6 +287,7 @@ void Emitter::loads_stage(std::ostringstream& o) const {
         break;
     }
   }
+  for (size_t i = 0; i < m_.inputs.size(); ++i) input_load(o, m_.inputs[i], a_.inputs[i]);
   o << "}\n\n";
 }
 
@@ -431,10 +446,15 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
       o << "  " << st << " = {" << vec3(b.position) << ", " << vec3(b.velocity) << "};  // " << b.name << "\n";
     }
   }
+  if (has_inputs()) {
+    o << "  s.inputs = {";
+    for (size_t i = 0; i < m_.inputs.size(); ++i) o << (i ? ", " : "") << num(m_.inputs[i].safe);
+    o << "};  // safe values\n";
+  }
   const bool ali3p = scheme_kind() == Scheme::ali3p;
   o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n"
     << (ali3p ? "  factorize(c, Rows::Constant(kRegularization));\n" : "  factorize(c);\n")
-    << "  Loads l;\n  applied_loads(k, l);\n  constraint_forces(c, l, stacked_phi(c), s);\n";
+    << "  Loads l;\n  " << loads_call() << ";\n  constraint_forces(c, l, stacked_phi(c), s);\n";
   if (ali3p) o << "  s.ali3p_lambda_star = s.lambda;\n";
   if (ali3p && a_.ali3p.delta_f != 0.0) {
     o << "  const BodyVectors a = accelerations_of(s);\n"
@@ -451,7 +471,7 @@ void Emitter::diagnostics(std::ostringstream& o) const {
   Kinematics k;
   kinematics(s, k);
   Loads l;
-  applied_loads(k, l);
+  )" << loads_call() << R"(;
   const BodyVectors u = generalized_velocities(s);
   mbrt::Energy e{0.0, l.elastic_energy};
 )";
@@ -541,6 +561,7 @@ std::string Emitter::source() const {
     staggered_step(o);
   }
   diagnostics(o);
+  if (has_outputs()) outputs_function(o);
   o << "}  // namespace mbrt::models::" << m_.name << "\n";
   return o.str();
 }

@@ -4,16 +4,23 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "analysis.hpp"
 
 namespace mbrt::codegen {
+
+struct GeneratedFile {
+  std::string name;
+  std::string text;
+};
 
 struct GeneratedCode {
   std::string header;       // <name>.hpp
   std::string source;       // <name>.cpp
   std::string header_name;  // "<name>.hpp"
   std::string source_name;  // "<name>.cpp"
+  std::vector<GeneratedFile> interface_files;  // LCM types and packing (models with inputs and outputs)
 };
 
 GeneratedCode emit_cpp(const Model& model, const Analysis& analysis);

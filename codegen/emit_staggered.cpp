@@ -138,7 +138,7 @@ void Emitter::staggered_step(std::ostringstream& o) const {
   for (int stage = 0; stage < kStages; ++stage) {
     set_velocities(u, s);
     k.vel = velocities_of(s);
-    applied_loads(k, l);
+    )" << loads_call() << R"(;
     implicit_stage(c, l, u_half, u);
   }
   set_velocities(u, s);
@@ -163,7 +163,7 @@ void Emitter::staggered_step(std::ostringstream& o) const {
   for (int stage = 0; stage < kStages; ++stage) {
     set_velocities(u, s);
     k.vel = velocities_of(s);
-    applied_loads(k, l);
+    )" << loads_call() << R"(;
     constraint_forces(c, l, phi, s);
     const BodyVectors a = accelerations_of(s);
     for (int b = 0; b < kBodies; ++b) u[b] = u_half[b] + (0.5 * h) * a[b];

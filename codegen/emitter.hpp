@@ -113,6 +113,19 @@ class Emitter {
     return Scheme::pcst;
   }
 
+  // emit_io.cpp: inputs (State::inputs, applied as loads) and outputs().
+  bool has_inputs() const { return !m_.inputs.empty(); }
+  bool has_outputs() const { return !m_.outputs.empty(); }
+  std::string loads_call() const { return has_inputs() ? "applied_loads(k, s.inputs, l)" : "applied_loads(k, l)"; }
+  void input_declarations(std::ostringstream& o) const;   // index constants, ranges, safe values
+  void output_declarations(std::ostringstream& o) const;  // one flat array; each signal's first index and count
+  std::string input_target(const Input& in) const;
+  std::string output_source(const Output& out) const;
+  bool revolute_output(const Output& out) const;
+  std::string output_layout(const Output& out) const;
+  void input_load(std::ostringstream& o, const Input& in, const InputPlan& p) const;
+  void outputs_function(std::ostringstream& o) const;
+
   // emit_staggered.cpp
   std::string stabilization_term() const;  // of S lambda = B M^-1 F + quad + stabilization
   void staggered_stages(std::ostringstream& o) const;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "emit_lcm.hpp"
 #include "initial_conditions.hpp"
 
 namespace mbrt::codegen {
@@ -73,12 +74,15 @@ Generated generate(const std::string& model_path, const GenerateOptions& options
   if (options.project_initial) project_initial_state(g.model, g.analysis);
   check_initial_state(g.model, g.analysis);
   g.code = emit_cpp(g.model, g.analysis);
+  if (!g.model.inputs.empty() && !g.model.outputs.empty()) g.code.interface_files = emit_lcm(g.model);
   return g;
 }
 
 void write_generated(const GeneratedCode& code, const std::string& dir) {
   std::filesystem::create_directories(dir);
-  for (const auto& [name, text] : {std::pair{code.header_name, code.header}, std::pair{code.source_name, code.source}}) {
+  std::vector<GeneratedFile> files = {{code.header_name, code.header}, {code.source_name, code.source}};
+  files.insert(files.end(), code.interface_files.begin(), code.interface_files.end());
+  for (const auto& [name, text] : files) {
     const std::filesystem::path path = std::filesystem::path(dir) / name;
     std::ifstream in(path);
     std::stringstream old;

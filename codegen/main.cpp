@@ -16,10 +16,20 @@ constexpr const char* kUsage = R"(usage:
   mbrt sim MODEL.yaml [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
                       [--ali3p-projection P] [--ali3p-integrator I]
                       [--t-end T] [--out F.csv] [--every N] [--velocities] [--verbose]
+  mbrt hil MODEL.yaml [generation options] --lcm URL [--rate HZ] [--duration S] [--report F.json]
+                      [--state-channel C] [--command-channel C] [--command-timeout S]
+                      [--max-command-age S] [--publish-every N] [--fifo PRIORITY] [--cpu N]
+  mbrt stub MODEL.yaml [generation options] --lcm URL [--rate HZ] [--duration S] [--report F.json]
+                      [--kp K] [--kd K] [--amplitude A] [--frequency F] [--settle S]
+                      [--delay-us D] [--jitter-us J] [--seed N] [--crash-after S]
+                      [--drop P] [--duplicate P] [--reorder P] [--garbage P] [--nan P] [--out-of-range P]
 
-gen writes DIR/<name>.hpp and DIR/<name>.cpp. sim generates, compiles (cached by
-content hash under $MBRT_CACHE_DIR or ~/.cache/mbrt) and runs the model; its last
-line on stdout is a JSON summary.
+gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
+outputs, DIR/<name>.lcm and DIR/<name>_lcm.hpp). sim generates, compiles (cached
+by content hash under $MBRT_CACHE_DIR or ~/.cache/mbrt) and runs the model; its
+last line on stdout is a JSON summary. hil runs the model in a real-time loop
+that publishes its outputs and takes commands over LCM; stub runs a PD
+controller for it; both print a JSON report. See docs/hil.md.
 )";
 
 struct UsageError : std::runtime_error {
@@ -52,7 +62,10 @@ int run(const std::vector<std::string>& args) {
     return args.empty() ? 2 : 0;
   }
   const std::string command = args[0];
-  if (command != "gen" && command != "sim") throw UsageError("unknown command '" + command + "'");
+  if (command != "gen" && command != "sim" && command != "hil" && command != "stub") {
+    throw UsageError("unknown command '" + command + "'");
+  }
+  const bool program_options = command == "hil" || command == "stub";  // checked by the program itself
   std::string model_path, out_dir;
   mbrt::codegen::SimOptions sim;
   mbrt::codegen::GenerateOptions& gen = sim.generate;
@@ -74,7 +87,11 @@ int run(const std::vector<std::string>& args) {
     else if (command == "sim" && a == "--every") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_integer(a, value()))});
     else if (command == "sim" && a == "--out") sim.driver_args.insert(sim.driver_args.end(), {a, value()});
     else if (command == "sim" && a == "--velocities") sim.driver_args.push_back(a);
-    else if (command == "sim" && a == "--verbose") sim.verbose = true;
+    else if (command != "gen" && a == "--verbose") sim.verbose = true;
+    else if (program_options && a.rfind("--", 0) == 0) {
+      sim.driver_args.push_back(a);  // every program option takes a value
+      if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) sim.driver_args.push_back(args[++i]);
+    }
     else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' for " + command);
     else if (model_path.empty()) model_path = a;
     else throw UsageError("unexpected argument '" + a + "'");
@@ -86,7 +103,9 @@ int run(const std::vector<std::string>& args) {
     mbrt::codegen::write_generated(g.code, out_dir);
     return 0;
   }
-  return mbrt::codegen::run_simulation(model_path, sim);
+  using mbrt::codegen::Program;
+  const Program program = command == "sim" ? Program::sim : command == "hil" ? Program::hil : Program::pd_controller;
+  return mbrt::codegen::run_program(program, model_path, sim);
 }
 
 }  // namespace

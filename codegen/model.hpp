@@ -109,6 +109,42 @@ struct Force {
   Eigen::Vector3d vector = Eigen::Vector3d::Zero();  // force: world, constant
 };
 
+// A command from a controller, applied as a load by the step:
+// joint_torque about a revolute joint's axis on body2 (reaction on body1),
+// joint_force along a prismatic joint's axis on body2 (reaction on body1),
+// motor_torque about an axis fixed in body1 between two bodies.
+enum class InputType { joint_torque, joint_force, motor_torque };
+
+struct Input {
+  std::string name;
+  SourceLocation where;
+  InputType type = InputType::joint_torque;
+  int joint = -1;                                   // joint_torque, joint_force: Model::joints index
+  int body1 = kGround;                              // motor_torque
+  int body2 = kGround;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // motor_torque: unit, world at t = 0, fixed in body1
+  double min = 0.0, max = 0.0, safe = 0.0;          // accepted range; value when commands are stale
+};
+
+// A signal the model publishes: joint_position and joint_velocity of a
+// revolute (rad, rad/s) or prismatic (m, m/s) joint, measured from t = 0;
+// body_pose (x, y, z, e0..e3) and body_velocity (vx, vy, vz world; wx, wy, wz
+// body axes) of a body.
+enum class OutputType { joint_position, joint_velocity, body_pose, body_velocity };
+
+const char* input_type_name(InputType type);
+
+struct Output {
+  std::string name;
+  SourceLocation where;
+  OutputType type = OutputType::joint_position;
+  int joint = -1;     // joint_position, joint_velocity
+  int body = kGround; // body_pose, body_velocity
+};
+
+const char* output_type_name(OutputType type);
+int output_count(OutputType type);  // values per signal: 7 for a pose, 6 for a velocity, else 1
+
 // ali3p (docs/ali3p.md): index-3 augmented Lagrangian with projections.
 struct Ali3pSettings {
   // Penalty of every constraint; 0 picks the default that puts the
@@ -151,6 +187,8 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Force> forces;
   std::vector<Driver> drivers;
+  std::vector<Input> inputs;
+  std::vector<Output> outputs;
   SolverSettings solver;
 
   const std::string& body_name(int index) const;  // "ground" for kGround

@@ -26,7 +26,7 @@ namespace {
 
 using Keys = std::vector<std::string>;
 
-const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers", "solver"};
+const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers", "inputs", "outputs", "solver"};
 const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
                         "orientation", "velocity", "angular_velocity"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
@@ -38,6 +38,10 @@ const Keys kFunctionKeys = {"polynomial", "sine"};
 const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
 const Keys kForceKeys = {"type", "body1", "body2", "point1", "point2", "stiffness", "damping",
                          "rest_length", "axis", "value", "body", "point", "vector"};
+const Keys kInputKeys = {"name", "type", "joint", "body1", "body2", "axis", "min", "max", "safe"};
+const Keys kOutputKeys = {"name", "type", "joint", "body"};
+// Fields every generated LCM message has besides the signals.
+const Keys kMessageFields = {"utime", "seq", "state_utime", "command_seq", "t"};
 const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
                           "stabilization", "baumgarte_alpha", "baumgarte_beta", "corrections",
                           "ali3p"};
@@ -58,6 +62,15 @@ const std::vector<std::pair<std::string, ForceType>> kForceTypes = {
     {"spring_damper", ForceType::spring_damper},
     {"torque", ForceType::torque},
     {"force", ForceType::force}};
+const std::vector<std::pair<std::string, InputType>> kInputTypes = {
+    {"joint_torque", InputType::joint_torque},
+    {"joint_force", InputType::joint_force},
+    {"motor_torque", InputType::motor_torque}};
+const std::vector<std::pair<std::string, OutputType>> kOutputTypes = {
+    {"joint_position", OutputType::joint_position},
+    {"joint_velocity", OutputType::joint_velocity},
+    {"body_pose", OutputType::body_pose},
+    {"body_velocity", OutputType::body_velocity}};
 const Keys kSchemes = {"staggered-pcst", "staggered-nps", "ali3p", "blajer", "baumgarte"};
 
 // Axes shorter than this cannot be normalized meaningfully.
@@ -573,6 +586,25 @@ Force parse_force(const Value& item, const Model& model) {
   return f;
 }
 
+// A joint named by `v` whose type is one of `types`; returns its index.
+int read_joint_ref(const Value& v, const Model& model, const std::vector<JointType>& types, const std::string& role) {
+  const std::string joint_name = read_string(v, "a joint name");
+  for (std::size_t i = 0; i < model.joints.size(); ++i) {
+    const Joint& j = model.joints[i];
+    if (j.name != joint_name) continue;
+    if (std::find(types.begin(), types.end(), j.type) == types.end()) {
+      std::string names;
+      for (JointType t : types) {
+        const auto named = std::find_if(kJointTypes.begin(), kJointTypes.end(), [&](const auto& e) { return e.second == t; });
+        names += (names.empty() ? "" : " or ") + named->first;
+      }
+      fail(v, role + " needs a " + names + " joint; '" + joint_name + "' is not one");
+    }
+    return static_cast<int>(i);
+  }
+  fail(v, "unknown joint '" + excerpt(joint_name) + "'");
+}
+
 TimeFunction parse_function(const Value& v) {
   const Section s(v, kFunctionKeys);
   TimeFunction f;
@@ -617,21 +649,10 @@ Driver parse_driver(const Value& item, const Model& model, std::map<std::string,
     if (!((d.point2 - d.point1).norm() > 0.0)) fail(point2, "point1 and point2 coincide: the distance has no direction");
   } else {
     s.restrict_to({"name", "type", "joint", "function"}, "a " + type.node.Scalar() + " driver");
-    const Value joint = s.get("joint");
-    const std::string joint_name = read_string(joint, "a joint name");
-    for (std::size_t i = 0; i < model.joints.size(); ++i) {
-      if (model.joints[i].name == joint_name) d.joint = static_cast<int>(i);
-    }
-    if (d.joint < 0) fail(joint, "unknown joint '" + joint_name + "'");
-    const JointType jt = model.joints[static_cast<std::size_t>(d.joint)].type;
-    const bool angle_ok = jt == JointType::revolute || jt == JointType::cylindrical;
-    const bool slide_ok = jt == JointType::prismatic || jt == JointType::cylindrical;
-    if (d.type == DriverType::joint_angle && !angle_ok) {
-      fail(joint, "a joint_angle driver needs a revolute or cylindrical joint; '" + joint_name + "' is not one");
-    }
-    if (d.type == DriverType::joint_distance && !slide_ok) {
-      fail(joint, "a joint_distance driver needs a prismatic or cylindrical joint; '" + joint_name + "' is not one");
-    }
+    const std::vector<JointType> joints = d.type == DriverType::joint_angle
+                                              ? std::vector{JointType::revolute, JointType::cylindrical}
+                                              : std::vector{JointType::prismatic, JointType::cylindrical};
+    d.joint = read_joint_ref(s.get("joint"), model, joints, "a " + type.node.Scalar() + " driver");
   }
   d.function = parse_function(s.get("function"));
   return d;
@@ -663,6 +684,75 @@ Ali3pSettings parse_ali3p(const Value& v) {
     if (a.rho_inf > 1.0) fail_expected(*x, "a spectral radius in [0, 1]");
   }
   return a;
+}
+
+// Inputs and outputs share one namespace of signal names (they become
+// message fields), which excludes the messages' own fields.
+void check_signal_name(const Value& name_value, const std::string& name, std::map<std::string, int>& seen) {
+  if (contains(kMessageFields, name)) {
+    fail(name_value, "'" + name + "' is a field of every message (reserved: " + join(kMessageFields) + ")");
+  }
+  check_unique(name_value, name, "input or output", seen);
+}
+
+// The name and type every input and output starts with; returns the type as written.
+template <typename Enum>
+std::string read_signal_head(const Section& s, const std::vector<std::pair<std::string, Enum>>& types,
+                             std::map<std::string, int>& names_seen, std::string& name, Enum& type) {
+  const Value name_value = s.get("name");
+  name = read_identifier(name_value);
+  check_signal_name(name_value, name, names_seen);
+  const Value type_value = s.get("type");
+  type = read_type(type_value, types);
+  return type_value.node.Scalar();
+}
+
+Input parse_input(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
+  const Section s(item, kInputKeys);
+  Input in;
+  in.where = item.where;
+  const std::string type_name = read_signal_head(s, kInputTypes, names_seen, in.name, in.type);
+  if (in.type == InputType::motor_torque) {
+    s.restrict_to({"name", "type", "body1", "body2", "axis", "min", "max", "safe"}, "a motor_torque input");
+    in.body1 = read_body_ref(s.get("body1"), model);
+    const Value body2 = s.get("body2");
+    in.body2 = read_body_ref(body2, model);
+    if (in.body1 == in.body2) fail(body2, "a motor_torque must connect two different bodies");
+    in.axis = read_axis(s.get("axis"));
+  } else {
+    s.restrict_to({"name", "type", "joint", "min", "max", "safe"}, "a " + type_name + " input");
+    const std::vector<JointType> joints = in.type == InputType::joint_torque
+                                              ? std::vector{JointType::revolute, JointType::cylindrical}
+                                              : std::vector{JointType::prismatic, JointType::cylindrical};
+    in.joint = read_joint_ref(s.get("joint"), model, joints, "a " + type_name + " input");
+  }
+  in.min = read_number(s.get("min"));
+  const Value max = s.get("max");
+  in.max = read_number(max);
+  if (!(in.max > in.min)) fail_expected(max, "a number > min (" + format_number(in.min) + ")");
+  const Value safe = s.get("safe");
+  in.safe = read_number(safe);
+  if (!(in.safe >= in.min && in.safe <= in.max)) {
+    fail_expected(safe, "a number within [min, max] = [" + format_number(in.min) + ", " + format_number(in.max) + "]");
+  }
+  return in;
+}
+
+Output parse_output(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
+  const Section s(item, kOutputKeys);
+  Output out;
+  out.where = item.where;
+  const std::string type_name = read_signal_head(s, kOutputTypes, names_seen, out.name, out.type);
+  if (out.type == OutputType::joint_position || out.type == OutputType::joint_velocity) {
+    s.restrict_to({"name", "type", "joint"}, "a " + type_name + " output");
+    out.joint = read_joint_ref(s.get("joint"), model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");
+  } else {
+    s.restrict_to({"name", "type", "body"}, "a " + type_name + " output");
+    const Value body = s.get("body");
+    out.body = read_body_ref(body, model);
+    if (out.body == kGround) fail(body, "ground does not move; name a body");
+  }
+  return out;
 }
 
 SolverSettings parse_solver(const Value& v) {
@@ -721,6 +811,18 @@ Model build_model(const YAML::Node& root, const std::string& file) {
     std::map<std::string, int> driver_names;
     for (std::size_t i = 0; i < drivers->node.size(); ++i) {
       model.drivers.push_back(parse_driver(element(*drivers, i), model, driver_names));
+    }
+  }
+
+  std::map<std::string, int> signal_names;
+  if (auto inputs = s.find("inputs"); inputs && !is_empty_or_list(*inputs, "a list of inputs")) {
+    for (std::size_t i = 0; i < inputs->node.size(); ++i) {
+      model.inputs.push_back(parse_input(element(*inputs, i), model, signal_names));
+    }
+  }
+  if (auto outputs = s.find("outputs"); outputs && !is_empty_or_list(*outputs, "a list of outputs")) {
+    for (std::size_t i = 0; i < outputs->node.size(); ++i) {
+      model.outputs.push_back(parse_output(element(*outputs, i), model, signal_names));
     }
   }
 

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -49,82 +50,134 @@ fs::path cache_root(const SimOptions& o) {
   return fs::temp_directory_path() / "mbrt-cache";
 }
 
-// Runtime headers and driver: the installed layout next to this executable
-// (<prefix>/bin/mbrt, <prefix>/include, <prefix>/share/mbrt) when present,
-// else the source tree it was built from.
+// Runtime headers and program sources: the installed layout next to this
+// executable (<prefix>/bin/mbrt, <prefix>/include, <prefix>/share/mbrt) when
+// present, else the source tree it was built from.
 struct Sources {
-  fs::path include;
-  fs::path driver;
+  std::vector<fs::path> includes;
+  fs::path sim_driver;
+  fs::path rt;        // the rt/ library sources and hil_driver.cpp
+  fs::path stub;      // hil_stub/pd_controller.cpp
 };
 
 Sources sources() {
   std::error_code ec;
   const fs::path prefix = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path();
-  if (!ec && fs::exists(prefix / "share" / "mbrt" / "sim_driver.cpp") && fs::exists(prefix / "include" / "mbrt")) {
-    return {prefix / "include", prefix / "share" / "mbrt" / "sim_driver.cpp"};
+  const fs::path share = prefix / "share" / "mbrt";
+  if (!ec && fs::exists(share / "sim_driver.cpp") && fs::exists(prefix / "include" / "mbrt")) {
+    return {{prefix / "include"}, share / "sim_driver.cpp", share / "rt", share / "hil_stub" / "pd_controller.cpp"};
   }
-  return {toolchain::kRuntimeInclude, toolchain::kDriverSource};
+  const fs::path root = toolchain::kSourceRoot;
+  return {{root / "include", root / "rt" / "include"}, root / "codegen" / "sim_driver.cpp", root / "rt",
+          root / "hil_stub" / "pd_controller.cpp"};
 }
 
-std::string compile_flags() {
+std::vector<std::string> split(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream in(list);
+  for (std::string item; std::getline(in, item, ';');) out.push_back(item);
+  return out;
+}
+
+// The sources compiled with the generated model, and whether the program
+// speaks LCM (then lcm-gen runs on the model's types first).
+struct ProgramPlan {
+  const char* executable;
+  std::vector<fs::path> sources;
+  bool lcm;
+};
+
+ProgramPlan plan(Program program) {
+  const Sources src = sources();
+  if (program == Program::sim) return {"sim", {src.sim_driver}, false};
+  std::vector<fs::path> files;
+  for (const std::string& f : split(toolchain::kRtSources)) files.push_back(src.rt / f);
+  files.push_back(program == Program::hil ? src.rt / "hil_driver.cpp" : src.stub);
+  return {program == Program::hil ? "hil" : "pd_controller", files, true};
+}
+
+std::string compile_flags(const ProgramPlan& p) {
   std::string flags = toolchain::kFlags;
 #if defined(__x86_64__)
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) flags += std::string(" ") + toolchain::kVectorFlags;
 #endif
+  // lcm_coretypes.h reads doubles through int64_t pointers: with strict
+  // aliasing, optimized builds encode stale bytes.
+  if (p.lcm) flags += " -fno-strict-aliasing";
   return flags;
 }
 
-// Everything the executable depends on: generated code, driver, runtime
-// headers and the compile command.
-std::string content_key(const GeneratedCode& code) {
+// Everything the executable depends on: generated code, program sources,
+// runtime headers and the compile command.
+std::string content_key(const GeneratedCode& code, const ProgramPlan& p) {
   std::uint64_t h = fnv1a(code.header);
   h = fnv1a(code.source, h);
-  h = fnv1a(read_file(sources().driver), h);
-  h = fnv1a(std::string(toolchain::kCompiler) + compile_flags(), h);
-  for (const auto& e : fs::directory_iterator(sources().include / "mbrt")) {
-    h = fnv1a(e.path().filename().string() + read_file(e.path()), h);
+  for (const GeneratedFile& f : code.interface_files) h = fnv1a(f.name + f.text, h);
+  for (const fs::path& f : p.sources) h = fnv1a(f.string() + read_file(f), h);
+  h = fnv1a(std::string(toolchain::kCompiler) + compile_flags(p) + (p.lcm ? toolchain::kLcmLibrary : ""), h);
+  for (const fs::path& dir : sources().includes) {
+    for (const auto& e : fs::recursive_directory_iterator(dir / "mbrt")) {
+      if (e.is_regular_file()) h = fnv1a(e.path().filename().string() + read_file(e.path()), h);
+    }
   }
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
 }
 
+void run_or_throw(const std::string& cmd, const std::string& what, const fs::path& log, bool verbose) {
+  if (verbose) std::fprintf(stderr, "%s: %s\n", what.c_str(), cmd.c_str());
+  if (std::system((cmd + " 2> " + quote(log.string())).c_str()) != 0) {
+    throw std::runtime_error(what + " failed; see " + log.string());
+  }
+}
+
 }  // namespace
 
-std::string build_simulator(const Generated& g, const SimOptions& options) {
-  const fs::path dir = cache_root(options) / (g.model.name + "-" + content_key(g.code));
-  const fs::path exe = dir / "sim";
+std::string build_program(Program program, const Generated& g, const SimOptions& options) {
+  const ProgramPlan p = plan(program);
+  if (p.lcm && g.code.interface_files.empty()) {
+    throw ModelError({g.model.file, 0, 0}, "inputs",
+                     "model '" + g.model.name + "' needs both inputs and outputs to run in a HIL loop");
+  }
+  const fs::path dir = cache_root(options) / (g.model.name + "-" + p.executable + "-" + content_key(g.code, p));
+  const fs::path exe = dir / p.executable;
   if (fs::exists(exe)) return exe.string();
   // Build in a private temporary directory, then rename: concurrent runs
   // and interrupted builds never leave a half-written executable.
   const fs::path tmp = dir.string() + ".tmp" + std::to_string(::getpid());
   fs::create_directories(tmp);
   write_generated(g.code, tmp.string());
-  const Sources src = sources();
-  const std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags() + " -I" +
-                          quote(tmp.string()) + " -I" + quote(src.include.string()) + " -I" +
-                          quote(toolchain::kEigenInclude) + " -DMBRT_MODEL_HEADER='\"" + g.code.header_name +
-                          "\"' -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name + " " +
-                          quote((tmp / g.code.source_name).string()) + " " + quote(src.driver.string()) +
-                          " -o " + quote((tmp / "sim").string()) + " 2> " + quote((tmp / "compile.log").string());
-  if (options.verbose) std::fprintf(stderr, "compiling: %s\n", cmd.c_str());
-  else std::fprintf(stderr, "compiling %s (cached in %s)\n", g.model.name.c_str(), dir.string().c_str());
-  if (std::system(cmd.c_str()) != 0) {
-    throw std::runtime_error("compiling the generated model failed; see " + (tmp / "compile.log").string());
+  std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags(p) + " -I" + quote(tmp.string());
+  for (const fs::path& inc : sources().includes) cmd += " -I" + quote(inc.string());
+  cmd += " -I" + quote(toolchain::kEigenInclude) + " -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name;
+  if (p.lcm) {
+    run_or_throw(std::string(toolchain::kLcmGen) + " -x --cpp-hpath " + quote(tmp.string()) + " " +
+                     quote((tmp / (g.model.name + ".lcm")).string()),
+                 "lcm-gen", tmp / "lcm-gen.log", options.verbose);
+    cmd += " -DMBRT_MODEL_LCM_HEADER='\"" + g.model.name + "_lcm.hpp\"'";
+  } else {
+    cmd += " -DMBRT_MODEL_HEADER='\"" + g.code.header_name + "\"'";
   }
+  cmd += " " + quote((tmp / g.code.source_name).string());
+  for (const fs::path& f : p.sources) cmd += " " + quote(f.string());
+  cmd += " -o " + quote((tmp / p.executable).string());
+  if (p.lcm) cmd += std::string(" ") + toolchain::kLcmLibrary;
+  if (!options.verbose) std::fprintf(stderr, "compiling %s %s (cached in %s)\n", g.model.name.c_str(), p.executable, dir.string().c_str());
+  run_or_throw(cmd, "compiling the generated model", tmp / "compile.log", options.verbose);
   std::error_code ec;
   fs::rename(tmp, dir, ec);
   if (ec) fs::remove_all(tmp);  // another run finished first; use its result
   return exe.string();
 }
 
-int run_simulation(const std::string& model_path, const SimOptions& options) {
+int run_program(Program program, const std::string& model_path, const SimOptions& options) {
   const Generated g = generate(model_path, options.generate);
-  std::string cmd = quote(build_simulator(g, options));
+  std::string cmd = quote(build_program(program, g, options));
   for (const std::string& a : options.driver_args) cmd += " " + quote(a);
   std::fflush(stdout);
   const int rc = std::system(cmd.c_str());
-  if (rc == -1) throw std::runtime_error("cannot start the simulator");
+  if (rc == -1) throw std::runtime_error("cannot start " + cmd);
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : 1;
 }
 

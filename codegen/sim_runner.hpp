@@ -1,4 +1,6 @@
-// `mbrt sim`: generate, compile (cached by content hash) and run a model.
+// `mbrt sim`, `mbrt hil` and `mbrt stub`: generate, compile (cached by
+// content hash) and run a program built around a model: the simulator, the
+// real-time HIL loop, or the PD controller stub.
 #pragma once
 
 #include <string>
@@ -8,17 +10,19 @@
 
 namespace mbrt::codegen {
 
+enum class Program { sim, hil, pd_controller };
+
 struct SimOptions {
   GenerateOptions generate;
-  std::vector<std::string> driver_args;  // passed through: --t-end, --out, --every, --velocities
+  std::vector<std::string> driver_args;  // passed through to the program
   std::string cache_dir;                 // empty: $MBRT_CACHE_DIR, else $XDG_CACHE_HOME/mbrt, else ~/.cache/mbrt
   bool verbose = false;
 };
 
-// Returns the simulation's exit code. Throws ModelError or std::runtime_error.
-int run_simulation(const std::string& model_path, const SimOptions& options);
+// Returns the program's exit code. Throws ModelError or std::runtime_error.
+int run_program(Program program, const std::string& model_path, const SimOptions& options);
 
-// The compiled executable for a model (built if not cached); for tests.
-std::string build_simulator(const Generated& generated, const SimOptions& options);
+// The compiled executable for a model (built if not cached).
+std::string build_program(Program program, const Generated& generated, const SimOptions& options);
 
 }  // namespace mbrt::codegen

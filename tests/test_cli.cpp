@@ -163,3 +163,21 @@ TEST_CASE("bad command lines get a usage message and exit code 2") {
   CHECK(mbrt("sim " + model("a01_pendulum.yaml") + " --warp 9").exit_code == 2);
   CHECK(mbrt("sim '/nonexistent/model.yaml'").err.find("/nonexistent/model.yaml") != std::string::npos);
 }
+
+TEST_CASE("mbrt gen writes the LCM types and packing of a model with inputs and outputs") {
+  const fs::path dir = fs::path(MBRT_TEST_WORK_DIR) / "gen_lcm";
+  const Run r = mbrt("gen " + model("actuated.yaml") + " -o '" + dir.string() + "'");
+  REQUIRE(r.exit_code == 0);
+  CHECK(fs::exists(dir / "actuated.lcm"));
+  CHECK(fs::exists(dir / "actuated_lcm.hpp"));
+  REQUIRE(mbrt("gen " + model("four_bar.yaml") + " -o '" + dir.string() + "'").exit_code == 0);
+  CHECK(fs::exists(dir / "four_bar.hpp"));
+  CHECK(!fs::exists(dir / "four_bar.lcm"));  // no inputs: no LCM types
+}
+
+TEST_CASE("mbrt hil refuses a model without inputs and outputs before compiling anything") {
+  const Run r = mbrt("hil " + model("four_bar.yaml") + " --lcm 'udpm://239.255.76.67:7667?ttl=0'");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("needs both inputs and outputs") != std::string::npos);
+  CHECK(r.err.find("compiling") == std::string::npos);
+}

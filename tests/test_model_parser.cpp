@@ -300,7 +300,7 @@ bodies:
 gravty: [0, 0, -9.81]
 )",
                     "gravty", 4,
-                    "unknown key 'gravty' (expected one of: name, gravity, bodies, joints, forces, drivers, solver)");
+                    "unknown key 'gravty' (expected one of: name, gravity, bodies, joints, forces, drivers, inputs, outputs, solver)");
 }
 
 TEST_CASE("an unknown key in a body is rejected with its line") {
@@ -870,4 +870,93 @@ bodies:
 solver: {penalty: -1e-9}
 )",
                     "solver.penalty", 4, "expected a number >= 0, got -1e-9");
+}
+
+// ---- inputs and outputs -----------------------------------------------------
+
+const char* const kArm = R"(name: arm
+bodies:
+  - {name: link, mass: 1, inertia: [1, 1, 1]}
+  - {name: cart, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - {name: pin, type: revolute, body1: ground, body2: link, point: [0, 0, 0], axis: [0, 0, 1]}
+  - {name: rail, type: prismatic, body1: ground, body2: cart, point: [0, 0, 0], axis: [1, 0, 0]}
+)";
+
+TEST_CASE("inputs and outputs parse into the structs") {
+  const Model m = parse_model(std::string(kArm) + R"(inputs:
+  - {name: tau_pin, type: joint_torque, joint: pin, min: -10, max: 10, safe: 0}
+  - {name: push, type: joint_force, joint: rail, min: -5, max: 5, safe: 1}
+  - {name: motor, type: motor_torque, body1: link, body2: cart, axis: [0, 0, 2], min: -1, max: 2, safe: 0}
+outputs:
+  - {name: q, type: joint_position, joint: pin}
+  - {name: qd, type: joint_velocity, joint: rail}
+  - {name: link_pose, type: body_pose, body: link}
+  - {name: cart_velocity, type: body_velocity, body: cart}
+)",
+                              "model.yaml");
+  REQUIRE(m.inputs.size() == 3);
+  CHECK(m.inputs[0].type == InputType::joint_torque);
+  CHECK(m.inputs[0].joint == 0);
+  CHECK(m.inputs[1].safe == 1.0);
+  CHECK(m.inputs[2].type == InputType::motor_torque);
+  CHECK(m.inputs[2].body1 == 0);
+  CHECK(m.inputs[2].axis.isApprox(Eigen::Vector3d::UnitZ()));
+  REQUIRE(m.outputs.size() == 4);
+  CHECK(m.outputs[1].joint == 1);
+  CHECK(m.outputs[2].type == OutputType::body_pose);
+  CHECK(m.outputs[3].body == 1);
+}
+
+TEST_CASE("a joint input on a joint of the wrong type is rejected naming the types it takes") {
+  CHECK_MODEL_ERROR(std::string(kArm) + R"(inputs:
+  - {name: push, type: joint_force, joint: pin, min: -5, max: 5, safe: 0}
+)",
+                    "inputs[0].joint", 9, "a joint_force input needs a prismatic or cylindrical joint; 'pin' is not one");
+}
+
+TEST_CASE("an input whose max is not above min, or whose safe value is outside, is rejected") {
+  CHECK_MODEL_ERROR(std::string(kArm) + R"(inputs:
+  - {name: tau, type: joint_torque, joint: pin, min: 3, max: 3, safe: 3}
+)",
+                    "inputs[0].max", 9, "expected a number > min (3)");
+  CHECK_MODEL_ERROR(std::string(kArm) + R"(inputs:
+  - {name: tau, type: joint_torque, joint: pin, min: -1, max: 1, safe: 2}
+)",
+                    "inputs[0].safe", 9, "expected a number within [min, max] = [-1, 1]");
+}
+
+TEST_CASE("an input without limits is rejected at the input") {
+  CHECK_MODEL_ERROR(std::string(kArm) + R"(inputs:
+  - {name: tau, type: joint_torque, joint: pin, min: -1, max: 1}
+)",
+                    "inputs[0].safe", 9, "missing required key 'safe'");
+}
+
+TEST_CASE("signal names are unique across inputs and outputs and exclude message fields") {
+  CHECK_MODEL_ERROR(std::string(kArm) + R"(inputs:
+  - {name: q, type: joint_torque, joint: pin, min: -1, max: 1, safe: 0}
+outputs:
+  - {name: q, type: joint_position, joint: pin}
+)",
+                    "outputs[0].name", 11, "duplicate input or output name 'q'");
+  CHECK_MODEL_ERROR(std::string(kArm) + R"(outputs:
+  - {name: utime, type: joint_position, joint: pin}
+)",
+                    "outputs[0].name", 9, "'utime' is a field of every message");
+}
+
+TEST_CASE("outputs of unknown joints, of ground or with keys of another type are rejected") {
+  CHECK_MODEL_ERROR(std::string(kArm) + R"(outputs:
+  - {name: q, type: joint_position, joint: elbow}
+)",
+                    "outputs[0].joint", 9, "unknown joint 'elbow'");
+  CHECK_MODEL_ERROR(std::string(kArm) + R"(outputs:
+  - {name: p, type: body_pose, body: ground}
+)",
+                    "outputs[0].body", 9, "ground does not move");
+  CHECK_MODEL_ERROR(std::string(kArm) + R"(outputs:
+  - {name: p, type: body_pose, body: link, joint: pin}
+)",
+                    "outputs[0].joint", 9, "key 'joint' does not apply to a body_pose output");
 }

@@ -19,6 +19,24 @@ struct ConstraintInfo {  // a joint or a driver
   int rows;
 };
 
+// A command input: what it drives and the range a command must respect.
+struct InputInfo {
+  const char* name;
+  const char* type;    // joint_torque, joint_force, motor_torque
+  const char* target;  // the joint, or "body1-body2" for a motor_torque
+  double min, max;     // commands outside are rejected
+  double safe;         // applied while commands are stale
+};
+
+// An output signal: values [first, first + count) of the model's Outputs.
+struct OutputInfo {
+  const char* name;
+  const char* type;    // joint_position, joint_velocity, body_pose, body_velocity
+  const char* source;  // the joint or body
+  int first;
+  int count;
+};
+
 struct Energy {
   double kinetic;
   double potential;  // gravity (zero at the origin) plus springs

@@ -1,0 +1,114 @@
+// Emission of a model's inputs (commands applied as loads by the step) and
+// outputs (signals computed from the state): their declarations in the
+// header, the loads and outputs().
+#include "emitter.hpp"
+
+namespace mbrt::codegen {
+
+// Inputs: index constants, ranges and safe values; State gains `inputs`.
+void Emitter::input_declarations(std::ostringstream& o) const {
+  o << "// Commands step() applies (State::inputs), SI units; limits and safe values in kInputInfo.\n"
+    << "namespace input {\n";
+  for (size_t i = 0; i < m_.inputs.size(); ++i) {
+    const Input& in = m_.inputs[i];
+    o << "inline constexpr int " << in.name << " = " << i << ";  // " << input_type_name(in.type) << " "
+      << input_target(in) << ", " << (in.type == InputType::joint_force ? "N" : "N m") << "\n";
+  }
+  o << "}  // namespace input\n"
+    << "inline constexpr int kInputs = " << m_.inputs.size() << ";\n"
+    << "using Inputs = std::array<double, kInputs>;\n"
+    << "inline constexpr std::array<mbrt::InputInfo, kInputs> kInputInfo{{\n";
+  for (const Input& in : m_.inputs) {
+    o << "    {\"" << in.name << "\", \"" << input_type_name(in.type) << "\", \"" << input_target(in) << "\", "
+      << num(in.min) << ", " << num(in.max) << ", " << num(in.safe) << "},\n";
+  }
+  o << "}};\n\n";
+}
+
+// Outputs: one flat array of values; each signal's first index and count.
+void Emitter::output_declarations(std::ostringstream& o) const {
+  o << "// Signals outputs() computes, as one array of values; see kOutputInfo.\nnamespace output {\n";
+  int first = 0;
+  for (const Output& out : m_.outputs) {
+    o << "inline constexpr int " << out.name << " = " << first << ";  // " << output_type_name(out.type) << " of "
+      << output_source(out) << ", " << output_layout(out) << "\n";
+    first += output_count(out.type);
+  }
+  o << "}  // namespace output\n"
+    << "inline constexpr int kOutputSignals = " << m_.outputs.size() << ";\n"
+    << "inline constexpr int kOutputs = " << first << ";  // values\n"
+    << "using Outputs = std::array<double, kOutputs>;\n"
+    << "inline constexpr std::array<mbrt::OutputInfo, kOutputSignals> kOutputInfo{{\n";
+  first = 0;
+  for (const Output& out : m_.outputs) {
+    o << "    {\"" << out.name << "\", \"" << output_type_name(out.type) << "\", \"" << output_source(out) << "\", "
+      << first << ", " << output_count(out.type) << "},\n";
+    first += output_count(out.type);
+  }
+  o << "}};\n\n";
+}
+
+std::string Emitter::input_target(const Input& in) const {
+  if (in.type == InputType::motor_torque) return m_.body_name(in.body1) + "-" + m_.body_name(in.body2);
+  return m_.joints[static_cast<size_t>(in.joint)].name;
+}
+std::string Emitter::output_source(const Output& out) const {
+  return out.joint >= 0 ? m_.joints[static_cast<size_t>(out.joint)].name : m_.body_name(out.body);
+}
+bool Emitter::revolute_output(const Output& out) const {
+  return m_.joints[static_cast<size_t>(out.joint)].type == JointType::revolute;
+}
+std::string Emitter::output_layout(const Output& out) const {
+  switch (out.type) {
+    case OutputType::joint_position: return revolute_output(out) ? "rad" : "m";
+    case OutputType::joint_velocity: return revolute_output(out) ? "rad/s" : "m/s";
+    case OutputType::body_pose: return "x, y, z (m, world), e0..e3";
+    case OutputType::body_velocity: return "vx, vy, vz (m/s, world), wx, wy, wz (rad/s, body)";
+  }
+  return "";
+}
+
+// A torque input: value times the body-1 axis, on body2 with the reaction
+// on body1. A force input: along the axis, at the joint point of each body;
+// both points lie on the axis line, so the pair has no moment.
+void Emitter::input_load(std::ostringstream& o, const Input& in, const InputPlan& p) const {
+  const std::string n = in.name;
+  o << "  {  // input " << n << ": " << input_type_name(in.type) << " " << input_target(in) << " on "
+    << m_.body_name(p.body2) << ", reaction on " << m_.body_name(p.body1) << "\n";
+  if (in.type == InputType::joint_force) {
+    o << "    const mbrt::Vec3 f = u[input::" << n << "] * (" << pose(p.body1) << ".R * " << n << "_axis);\n";
+    if (p.body2 != kGround) o << "    mbrt::add_point_force(l.w[" << p.body2 << "], " << pose(p.body2) << ", " << n << "_s2, f);\n";
+    if (p.body1 != kGround) o << "    mbrt::add_point_force(l.w[" << p.body1 << "], " << pose(p.body1) << ", " << n << "_s1, -f);\n";
+  } else {
+    o << "    const mbrt::Vec3 t = u[input::" << n << "] * (" << pose(p.body1) << ".R * " << n << "_axis);\n";
+    if (p.body2 != kGround) o << "    l.w[" << p.body2 << "].tau += " << pose(p.body2) << ".R.transpose() * t;\n";
+    if (p.body1 != kGround) o << "    l.w[" << p.body1 << "].tau -= " << pose(p.body1) << ".R.transpose() * t;\n";
+  }
+  o << "  }\n";
+}
+
+void Emitter::outputs_function(std::ostringstream& o) const {
+  o << "void outputs(const State& s, Outputs& y) noexcept {\n  Kinematics k;\n  kinematics(s, k);\n";
+  for (const Output& out : m_.outputs) {
+    const std::string at = "y.data() + output::" + out.name;
+    if (out.joint >= 0) {
+      const Joint& j = m_.joints[static_cast<size_t>(out.joint)];
+      o << "  y[output::" << out.name << "] = mbrt::" << (revolute_output(out) ? "revolute" : "prismatic")
+        << "_coordinate(" << j.name << "_frame, " << motion(j.body1) << ", " << motion(j.body2) << ")."
+        << (out.type == OutputType::joint_position ? "position" : "velocity") << ";\n";
+      continue;
+    }
+    const std::string st = state_of(out.body);
+    const bool rigid = plan(out.body).rigid;
+    if (out.type == OutputType::body_pose) {
+      o << "  Eigen::Map<mbrt::Vec3>(" << at << ") = " << st << ".r;\n"
+        << "  Eigen::Map<mbrt::Vec4>(" << at << " + 3) = " << (rigid ? st + ".p" : "mbrt::Vec4(1.0, 0.0, 0.0, 0.0)") << ";\n";
+    } else {
+      o << "  Eigen::Map<mbrt::Vec3>(" << at << ") = " << st << ".v;\n"
+        << "  Eigen::Map<mbrt::Vec3>(" << at << " + 3) = " << (rigid ? st + ".w" : "mbrt::Vec3::Zero()") << ";\n";
+    }
+  }
+  o << "}\n\n";
+}
+
+}  // namespace mbrt::codegen

@@ -1,0 +1,316 @@
+// A simulated controller in its own process: a PD joint controller that
+// reads the model's state over LCM and answers with commands at its own
+// period, with a configurable compute delay, jitter and injected faults.
+// Compiled by `mbrt stub` with the model's generated LCM types, with
+//   -DMBRT_MODEL_LCM_HEADER="<name>_lcm.hpp" -DMBRT_MODEL_NAMESPACE=mbrt::models::<name>
+//
+// Every joint_torque or joint_force input whose joint has joint_position and
+// joint_velocity outputs is driven to follow q_ref(t) = A sin(2 pi f t), t
+// the simulation time of the latest state (the reference does not restart
+// with the controller):
+//   u = clamp(kp (q_ref - q) + kd (q_ref' - q'), min, max),
+// with one kp and kd for all joints or one per controlled joint, in input order.
+// Other inputs get their safe value. The report gives the tracking error
+// over the states received after the first --settle seconds of control.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <mbrt/rt/lcm_bridge.hpp>
+#include <mbrt/rt/periodic_clock.hpp>
+#include <mbrt/rt/program_options.hpp>
+
+#include MBRT_MODEL_LCM_HEADER
+
+namespace model = MBRT_MODEL_NAMESPACE;
+using namespace mbrt::rt;
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: pd_controller --lcm URL [--rate HZ] [--duration S] [--report F.json]
+           [--kp K[,K...]] [--kd K[,K...]] [--amplitude A] [--frequency F] [--settle S]
+           [--delay-us D] [--jitter-us J] [--seed N] [--crash-after S]
+           [--drop P] [--duplicate P] [--reorder P] [--garbage P] [--nan P] [--out-of-range P]
+           [--state-channel C] [--command-channel C]
+)";
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Probabilities of each fault per command.
+struct Faults {
+  double drop = 0, duplicate = 0, reorder = 0, garbage = 0, nan = 0, out_of_range = 0;
+};
+
+struct Options {
+  LinkOptions link{"", 500.0, 5.0, "", model::kStateChannel, model::kCommandChannel};
+  std::vector<double> kp{40.0}, kd{4.0};
+  double amplitude = 0.5, frequency = 0.5;
+  double settle_s = 1.0;
+  double delay_us = 0.0, jitter_us = 0.0;
+  unsigned seed = 1;
+  double crash_after_s = -1.0;
+  Faults faults;
+};
+
+// "a" or "a,b,c": gains for all joints, or one per controlled joint.
+std::vector<double> gains(ProgramOptions& args) {
+  const std::string option = args.name(), text = args.text();
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, end - start);
+    char* used = nullptr;
+    const double x = std::strtod(item.c_str(), &used);
+    if (item.empty() || *used != '\0' || !std::isfinite(x)) args.fail(option + ": expected numbers separated by commas, got '" + text + "'");
+    out.push_back(x);
+    start = end + 1;
+  }
+  return out;
+}
+
+double probability(ProgramOptions& args) {
+  const double p = args.number();
+  if (!(p >= 0.0 && p <= 1.0)) args.fail(args.name() + ": expected a probability in [0, 1]");
+  return p;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  ProgramOptions args(argc, argv, kUsage);
+  while (args.next()) {
+    const std::string a = args.name();
+    if (read_link_option(args, o.link)) continue;
+    if (a == "--kp") o.kp = gains(args);
+    else if (a == "--kd") o.kd = gains(args);
+    else if (a == "--amplitude") o.amplitude = args.number();
+    else if (a == "--frequency") o.frequency = args.number();
+    else if (a == "--settle") o.settle_s = args.number();
+    else if (a == "--delay-us") o.delay_us = args.number();
+    else if (a == "--jitter-us") o.jitter_us = args.number();
+    else if (a == "--seed") o.seed = static_cast<unsigned>(args.integer());
+    else if (a == "--crash-after") o.crash_after_s = args.number();
+    else if (a == "--drop") o.faults.drop = probability(args);
+    else if (a == "--duplicate") o.faults.duplicate = probability(args);
+    else if (a == "--reorder") o.faults.reorder = probability(args);
+    else if (a == "--garbage") o.faults.garbage = probability(args);
+    else if (a == "--nan") o.faults.nan = probability(args);
+    else if (a == "--out-of-range") o.faults.out_of_range = probability(args);
+    else args.fail("unknown option '" + a + "'");
+  }
+  check_link_options(args, o.link);
+  if (!(o.delay_us >= 0.0) || !(o.jitter_us >= 0.0)) args.fail("--delay-us and --jitter-us must be >= 0");
+  return o;
+}
+
+// An input driven by the PD law, with the outputs of its joint.
+struct JointLoop {
+  int input;
+  int position;  // index in Outputs
+  int velocity;
+};
+
+int output_of(const char* source, const char* type) {
+  for (const mbrt::OutputInfo& o : model::kOutputInfo) {
+    if (std::strcmp(o.source, source) == 0 && std::strcmp(o.type, type) == 0) return o.first;
+  }
+  return -1;
+}
+
+std::vector<JointLoop> joint_loops() {
+  std::vector<JointLoop> loops;
+  for (int i = 0; i < model::kInputs; ++i) {
+    const mbrt::InputInfo& in = model::kInputInfo[static_cast<std::size_t>(i)];
+    if (std::strcmp(in.type, "motor_torque") == 0) continue;
+    const int q = output_of(in.target, "joint_position"), qd = output_of(in.target, "joint_velocity");
+    if (q < 0 || qd < 0) {
+      std::fprintf(stderr, "note: input %s gets its safe value: joint %s has no joint_position and joint_velocity outputs\n",
+                   in.name, in.target);
+      continue;
+    }
+    loops.push_back({i, q, qd});
+  }
+  return loops;
+}
+
+struct FaultCounts {
+  long dropped = 0, duplicated = 0, reordered = 0, garbage = 0, nan = 0, out_of_range = 0;
+};
+
+struct Controller {
+  Options opt;
+  std::vector<JointLoop> loops = joint_loops();
+  model::StateMessage state{};
+  bool have_state = false;
+  double first_state_t = 0.0;
+  long states_received = 0;
+  long commands_sent = 0;
+  double error_sum_sq = 0.0, error_max = 0.0;
+  long error_samples = 0;
+  FaultCounts faults;
+  std::mt19937_64 random;
+  std::vector<unsigned char> held;  // a command kept back to be sent after the next one
+
+  explicit Controller(const Options& o) : opt(o), random(o.seed) {
+    for (const std::vector<double>* g : {&opt.kp, &opt.kd}) {
+      if (g->size() != 1 && g->size() != loops.size()) {
+        throw std::runtime_error("--kp and --kd take one gain or one per controlled joint (" + std::to_string(loops.size()) + ")");
+      }
+    }
+  }
+
+  static double gain(const std::vector<double>& g, std::size_t joint) { return g.size() == 1 ? g[0] : g[joint]; }
+
+  double q_ref(double t) const { return opt.amplitude * std::sin(2.0 * kPi * opt.frequency * t); }
+  double qd_ref(double t) const { return 2.0 * kPi * opt.frequency * opt.amplitude * std::cos(2.0 * kPi * opt.frequency * t); }
+  bool chance(double p) { return p > 0.0 && std::uniform_real_distribution<double>(0.0, 1.0)(random) < p; }
+
+  void track(const model::Outputs& y, double t) {
+    if (t - first_state_t < opt.settle_s) return;
+    for (const JointLoop& j : loops) {
+      const double e = q_ref(t) - y[static_cast<std::size_t>(j.position)];
+      error_sum_sq += e * e;
+      error_max = std::max(error_max, std::abs(e));
+      ++error_samples;
+    }
+  }
+
+  model::Inputs command() const {
+    model::Inputs u;
+    for (int i = 0; i < model::kInputs; ++i) u[static_cast<std::size_t>(i)] = model::kInputInfo[static_cast<std::size_t>(i)].safe;
+    model::Outputs y;
+    model::unpack_outputs(state, y);
+    for (std::size_t k = 0; k < loops.size(); ++k) {
+      const JointLoop& j = loops[k];
+      const mbrt::InputInfo& in = model::kInputInfo[static_cast<std::size_t>(j.input)];
+      const double pd = gain(opt.kp, k) * (q_ref(state.t) - y[static_cast<std::size_t>(j.position)]) +
+                        gain(opt.kd, k) * (qd_ref(state.t) - y[static_cast<std::size_t>(j.velocity)]);
+      u[static_cast<std::size_t>(j.input)] = std::clamp(pd, in.min, in.max);
+    }
+    return u;
+  }
+};
+
+void on_state(const void* data, int size, void* context) {
+  Controller& c = *static_cast<Controller*>(context);
+  if (!model::decode_exactly(data, size, c.state)) return;
+  if (!c.have_state) c.first_state_t = c.state.t;
+  c.have_state = true;
+  ++c.states_received;
+  model::Outputs y;
+  model::unpack_outputs(c.state, y);
+  c.track(y, c.state.t);
+}
+
+std::vector<unsigned char> encode(const model::CommandMessage& m) {
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(m.getEncodedSize()));
+  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// Builds the next command and sends it, or the fault that replaces it.
+void send_command(Controller& c, LcmBridge& bridge, long seq) {
+  model::Inputs u = c.command();
+  if (c.chance(c.opt.faults.nan)) {
+    u[0] = std::nan("");
+    ++c.faults.nan;
+  } else if (c.chance(c.opt.faults.out_of_range)) {
+    u[0] = model::kInputInfo[0].max + 1.0 + std::abs(model::kInputInfo[0].max);
+    ++c.faults.out_of_range;
+  }
+  model::CommandMessage m{};
+  model::pack_inputs(u, m);
+  m.seq = seq;
+  m.state_utime = c.state.utime;
+  if (c.opt.delay_us > 0.0 || c.opt.jitter_us > 0.0) {  // compute time of the control law
+    const double us = c.opt.delay_us + std::uniform_real_distribution<double>(0.0, c.opt.jitter_us)(c.random);
+    std::this_thread::sleep_for(std::chrono::microseconds(std::llround(us)));
+  }
+  m.utime = realtime_us();
+  std::vector<unsigned char> bytes = encode(m);
+  const char* channel = c.opt.link.command_channel.c_str();
+  if (c.chance(c.opt.faults.garbage)) {
+    std::uniform_int_distribution<int> byte(0, 255);
+    for (unsigned char& b : bytes) b = static_cast<unsigned char>(byte(c.random));
+    bytes.resize(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, static_cast<int>(bytes.size()))(c.random)));
+    ++c.faults.garbage;
+  }
+  if (c.chance(c.opt.faults.drop)) {
+    ++c.faults.dropped;
+    return;
+  }
+  if (c.held.empty() && c.chance(c.opt.faults.reorder)) {
+    c.held = bytes;
+    ++c.faults.reordered;
+    return;
+  }
+  bridge.publish(channel, bytes.data(), static_cast<int>(bytes.size()));
+  ++c.commands_sent;
+  if (!c.held.empty()) {
+    bridge.publish(channel, c.held.data(), static_cast<int>(c.held.size()));
+    c.held.clear();
+    ++c.commands_sent;
+  }
+  if (c.chance(c.opt.faults.duplicate)) {
+    bridge.publish(channel, bytes.data(), static_cast<int>(bytes.size()));
+    ++c.faults.duplicated;
+  }
+}
+
+std::string report(const Controller& c) {
+  char buf[1024];
+  const double rms = c.error_samples ? std::sqrt(c.error_sum_sq / static_cast<double>(c.error_samples)) : NAN;
+  std::snprintf(buf, sizeof buf,
+                "{\"states_received\": %ld, \"commands_sent\": %ld, \"joints_controlled\": %zu, "
+                "\"tracking_rms\": %s, \"tracking_max\": %.6g, \"tracking_samples\": %ld, \"faults\": {\"dropped\": %ld, "
+                "\"duplicated\": %ld, \"reordered\": %ld, \"garbage\": %ld, \"nan\": %ld, \"out_of_range\": %ld}}\n",
+                c.states_received, c.commands_sent, c.loops.size(), std::isfinite(rms) ? std::to_string(rms).c_str() : "null",
+                c.error_max, c.error_samples, c.faults.dropped, c.faults.duplicated, c.faults.reordered, c.faults.garbage,
+                c.faults.nan, c.faults.out_of_range);
+  return buf;
+}
+
+int run(const Options& opt) {
+  Controller c(opt);
+  LcmBridge bridge(opt.link.lcm_url, opt.link.state_channel);
+  const std::int64_t period_ns = std::llround(1e9 / opt.link.rate_hz);
+  const std::int64_t start = monotonic_ns();
+  const std::int64_t end = start + std::llround(opt.link.duration_s * 1e9);
+  std::int64_t next = start + period_ns;
+  long seq = 0;
+  while (monotonic_ns() < end) {
+    // Take states until the next tick, then answer the latest one.
+    for (std::int64_t now = monotonic_ns(); now < next; now = monotonic_ns()) {
+      bridge.receive(&on_state, &c, 64, static_cast<int>(std::max<std::int64_t>(1, (next - now) / 1000000)));
+    }
+    next += period_ns;
+    if (opt.crash_after_s >= 0.0 && monotonic_ns() - start > std::llround(opt.crash_after_s * 1e9)) {
+      std::fprintf(stderr, "pd_controller: crashing as asked (--crash-after %g)\n", opt.crash_after_s);
+      std::_Exit(3);  // no clean-up, no report: like a real crash
+    }
+    if (c.have_state) send_command(c, bridge, seq++);
+  }
+  const std::string json = report(c);
+  if (!write_report(json, opt.link.report)) return 1;
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = parse(argc, argv);
+  try {
+    return run(opt);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,41 @@
+// Joint coordinates for output signals: the angle of a revolute joint or the
+// slide of a prismatic joint, measured from the configuration at t = 0 like
+// the drivers (joints.hpp), and their rates.
+#pragma once
+
+#include "mbrt/joints.hpp"
+
+namespace mbrt {
+
+struct JointCoordinate {
+  double position;  // rad or m
+  double velocity;  // rad/s or m/s
+};
+
+namespace detail {
+inline Vec6 generalized_velocity(const BodyVelocity& v) noexcept {
+  Vec6 u;
+  u << v.v, v.w;
+  return u;
+}
+
+template <class Row>
+inline double rate_of(const Row& r, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  return r.J1.dot(generalized_velocity(m1.vel)) + r.J2.dot(generalized_velocity(m2.vel));
+}
+}  // namespace detail
+
+// Angle of body 2 about the axis of body 1, in (-pi, pi].
+inline JointCoordinate revolute_coordinate(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  const AngleRow r = relative_angle_row(m1.pose, m1.vel, f.a1, f.b1, f.c1, m2.pose, m2.vel, f.b2);
+  return {r.theta, detail::rate_of(r, m1, m2)};
+}
+
+// Displacement of the joint point of body 2 along the axis of body 1.
+inline JointCoordinate prismatic_coordinate(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  const ScalarRow r =
+      normal_dot_difference_row(carried_direction(m1.pose, m1.vel, f.a1), detail::joint_points(f, m1, m2));
+  return {r.phi, detail::rate_of(r, m1, m2)};
+}
+
+}  // namespace mbrt

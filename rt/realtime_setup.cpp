@@ -1,0 +1,61 @@
+#include "mbrt/rt/realtime_setup.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include <sched.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+
+namespace mbrt::rt {
+
+namespace {
+
+// Touch the stack the loop will use, so its pages are mapped (and, with
+// mlockall, locked) before the first cycle rather than faulted in during one.
+void prefault_stack() {
+  constexpr std::size_t kBytes = 512 * 1024;
+  volatile unsigned char page[kBytes];
+  for (std::size_t i = 0; i < kBytes; i += 4096) page[i] = 0;
+}
+
+void warn(RealtimeStatus& status, const std::string& what) {
+  status.warnings += what + "\n";
+  std::fprintf(stderr, "warning: %s\n", what.c_str());
+}
+
+}  // namespace
+
+RealtimeStatus prepare_realtime(const RealtimeOptions& options) {
+  RealtimeStatus status;
+  status.memory_locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
+  if (!status.memory_locked) {
+    const std::string why = std::strerror(errno);
+    rlimit limit{};
+    getrlimit(RLIMIT_MEMLOCK, &limit);
+    const std::string allowed =
+        limit.rlim_cur == RLIM_INFINITY ? "unlimited" : std::to_string(limit.rlim_cur / 1024) + " KiB";
+    warn(status, "mlockall failed (" + why + "; RLIMIT_MEMLOCK " + allowed +
+                     "): pages may be swapped or faulted in during the loop; raise it with ulimit -l");
+  }
+  prefault_stack();
+  if (options.cpu >= 0) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(options.cpu, &set);
+    status.pinned = sched_setaffinity(0, sizeof set, &set) == 0;
+    if (!status.pinned) warn(status, "cannot pin to CPU " + std::to_string(options.cpu) + " (" + std::strerror(errno) + ")");
+  }
+  if (options.fifo_priority > 0) {
+    const sched_param p{options.fifo_priority};
+    status.fifo = sched_setscheduler(0, SCHED_FIFO, &p) == 0;
+    if (!status.fifo) {
+      warn(status, std::string("SCHED_FIFO refused (") + std::strerror(errno) +
+                       "): running with the default scheduler; needs CAP_SYS_NICE or an rtprio limit");
+    }
+  }
+  return status;
+}
+
+}  // namespace mbrt::rt

@@ -1,0 +1,32 @@
+"""What the HIL test scripts share: the loopback LCM URL, the programs'
+cache, the controller's gains for the demo arm, and checks that report
+each result and fail the script at the end."""
+import os
+import subprocess
+import sys
+
+LCM_URL = "udpm://239.255.76.67:7667?ttl=0"
+GAINS = ["--kp", "200,60,10", "--kd", "20,6,1"]  # per joint of the demo arm
+_failures = []
+
+
+def environment(work):
+    os.makedirs(work, exist_ok=True)
+    return dict(os.environ, MBRT_CACHE_DIR=os.path.join(work, "cache"))
+
+
+def compile_programs(mbrt, model, env):
+    """Builds `mbrt hil` and `mbrt stub` for the model before anything is timed."""
+    for command in ("hil", "stub"):
+        subprocess.run([mbrt, command, model, "--lcm", LCM_URL, "--duration", "0"], env=env,
+                       stdout=subprocess.DEVNULL, check=True)
+
+
+def check(condition, what):
+    print(("ok   " if condition else "FAIL ") + what)
+    if not condition:
+        _failures.append(what)
+
+
+def finish():
+    sys.exit(1 if _failures else 0)
