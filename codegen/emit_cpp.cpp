@@ -73,6 +73,10 @@ std::string Emitter::header() const {
     << "mbrt::Energy energy(const State& s) noexcept;\n"
     << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept;\n"
     << "double quaternion_norm_error(const State& s) noexcept;  // max | |p| - 1 |\n\n"
+    << "// Force and torque of every joint and driver on its body2 (kConstraintInfo\n"
+    << "// order), from the multipliers of the last step.\n"
+    << "using Reactions = std::array<mbrt::JointReaction, kConstraintBlocks>;\n"
+    << "void reactions(const State& s, Reactions& r) noexcept;\n\n"
     << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept;\n\n" : "")
     << "}  // namespace mbrt::models::" << m_.name << "\n";
   return o.str();
@@ -522,7 +526,7 @@ std::string Emitter::source() const {
   o << "// Left out for this scene:";
   for (const std::string& s : a_.skipped) o << "\n//   " << s;
   if (a_.skipped.empty()) o << " nothing";
-  o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n#include <mbrt/runtime.hpp>\n\n"
+  o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n#include <mbrt/reactions.hpp>\n#include <mbrt/runtime.hpp>\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";
   constants(o);
   workspace_types(o);
@@ -561,9 +565,30 @@ std::string Emitter::source() const {
     staggered_step(o);
   }
   diagnostics(o);
+  reactions_function(o);
   if (has_outputs()) outputs_function(o);
   o << "}  // namespace mbrt::models::" << m_.name << "\n";
   return o.str();
+}
+
+void Emitter::reactions_function(std::ostringstream& o) const {
+  o << "void reactions(const State& s, Reactions& r) noexcept {\n";
+  if (blocks() == 0) {
+    o << "  (void)s;\n  (void)r;\n}\n\n";
+    return;
+  }
+  o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n";
+  for (int j = 0; j < blocks(); ++j) {
+    const ConstraintBlock& b = block(j);
+    const bool on_body2 = b.body2 != kGround;
+    const int on = on_body2 ? b.body2 : b.body1;
+    const std::string point = on_body2 ? pose(b.body2) + ".r + " + pose(b.body2) + ".R * " + b.name + "_frame.s2"
+                                       : b.name + "_frame.s2";
+    o << "  r[" << j << "] = mbrt::joint_reaction(-(c.rows_" << b.name << "." << (on_body2 ? "J2" : "J1")
+      << ".transpose() * " << seg("s.lambda", j) << "), " << pose(on) << ",\n      " << point << ", "
+      << (on_body2 ? "1.0" : "-1.0") << ", " << pose(b.body1) << ", " << b.name << "_frame);  // " << b.name << "\n";
+  }
+  o << "}\n\n";
 }
 
 void Emitter::constraint_forces_function(std::ostringstream& o, const std::string& stabilization) const {

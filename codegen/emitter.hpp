@@ -104,6 +104,7 @@ class Emitter {
   void constraint_forces_function(std::ostringstream& o, const std::string& stabilization) const;
   void initial_state_function(std::ostringstream& o) const;
   void diagnostics(std::ostringstream& o) const;
+  void reactions_function(std::ostringstream& o) const;
 
   enum class Scheme { pcst, baumgarte, blajer, ali3p };
   Scheme scheme_kind() const {

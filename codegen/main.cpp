@@ -15,7 +15,7 @@ constexpr const char* kUsage = R"(usage:
                       [--ali3p-projection bayo|cuadrado] [--ali3p-integrator trapezoidal|generalized_alpha]
   mbrt sim MODEL.yaml [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
                       [--ali3p-projection P] [--ali3p-integrator I]
-                      [--t-end T] [--out F.csv] [--every N] [--velocities] [--verbose]
+                      [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--verbose]
   mbrt hil MODEL.yaml [generation options] --lcm URL [--rate HZ] [--duration S] [--report F.json]
                       [--state-channel C] [--command-channel C] [--command-timeout S]
                       [--max-command-age S] [--publish-every N] [--fifo PRIORITY] [--cpu N]
@@ -86,7 +86,7 @@ int run(const std::vector<std::string>& args) {
     else if (command == "sim" && a == "--t-end") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_number(a, value()))});
     else if (command == "sim" && a == "--every") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_integer(a, value()))});
     else if (command == "sim" && a == "--out") sim.driver_args.insert(sim.driver_args.end(), {a, value()});
-    else if (command == "sim" && a == "--velocities") sim.driver_args.push_back(a);
+    else if (command == "sim" && (a == "--velocities" || a == "--reactions")) sim.driver_args.push_back(a);
     else if (command != "gen" && a == "--verbose") sim.verbose = true;
     else if (program_options && a.rfind("--", 0) == 0) {
       sim.driver_args.push_back(a);  // every program option takes a value

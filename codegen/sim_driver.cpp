@@ -21,10 +21,11 @@ struct Options {
   const char* out = nullptr;
   long every = 1;
   bool velocities = false;
+  bool reactions = false;
 };
 
 [[noreturn]] void usage(const char* why) {
-  std::fprintf(stderr, "sim driver: %s\nusage: sim [--t-end T] [--out F.csv] [--every N] [--velocities]\n", why);
+  std::fprintf(stderr, "sim driver: %s\nusage: sim [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions]\n", why);
   std::exit(2);
 }
 
@@ -40,6 +41,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--out") o.out = value();
     else if (a == "--every") o.every = std::atol(value());
     else if (a == "--velocities") o.velocities = true;
+    else if (a == "--reactions") o.reactions = true;
     else usage(("unknown option " + a).c_str());
   }
   if (!(o.t_end >= 0.0)) usage("--t-end must be >= 0");
@@ -47,7 +49,8 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-void write_header(std::FILE* f, bool velocities) {
+void write_header(std::FILE* f, const Options& o) {
+  const bool velocities = o.velocities;
   std::fprintf(f, "t");
   for (const mbrt::BodyInfo& b : model::kBodyInfo) {
     std::fprintf(f, ",%s.x,%s.y,%s.z", b.name, b.name, b.name);
@@ -57,6 +60,11 @@ void write_header(std::FILE* f, bool velocities) {
       if (b.rigid) std::fprintf(f, ",%s.wx,%s.wy,%s.wz", b.name, b.name, b.name);
     }
   }
+  if (o.reactions) {
+    for (const mbrt::ConstraintInfo& c : model::kConstraintInfo) {
+      for (const char* q : {"fx", "fy", "fz", "tx", "ty", "tz"}) std::fprintf(f, ",%s.%s", c.name, q);
+    }
+  }
   std::fprintf(f, "\n");
 }
 
@@ -64,7 +72,8 @@ void write_vec(std::FILE* f, const double* x, int n) {
   for (int i = 0; i < n; ++i) std::fprintf(f, ",%.17g", x[i]);
 }
 
-void write_row(std::FILE* f, const model::State& s, bool velocities) {
+void write_row(std::FILE* f, const model::State& s, const Options& o) {
+  const bool velocities = o.velocities;
   std::fprintf(f, "%.17g", s.t);
   for (const mbrt::BodyInfo& b : model::kBodyInfo) {
     if (b.rigid) {
@@ -79,6 +88,14 @@ void write_row(std::FILE* f, const model::State& s, bool velocities) {
       const mbrt::ParticleState& x = s.particle[static_cast<size_t>(b.slot)];
       write_vec(f, x.r.data(), 3);
       if (velocities) write_vec(f, x.v.data(), 3);
+    }
+  }
+  if (o.reactions) {
+    model::Reactions r;
+    model::reactions(s, r);
+    for (const mbrt::JointReaction& j : r) {
+      write_vec(f, j.force.data(), 3);
+      write_vec(f, j.torque.data(), 3);
     }
   }
   std::fprintf(f, "\n");
@@ -103,7 +120,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "error: cannot write %s: %s\n", opt.out, std::strerror(errno));
       return 1;
     }
-    write_header(csv, opt.velocities);
+    write_header(csv, opt);
   }
   model::State s = model::initial_state();
   const double e0 = model::energy(s).total();
@@ -115,7 +132,7 @@ int main(int argc, char** argv) {
     max_vel = std::max(max_vel, v.velocity);
     max_acc = std::max(max_acc, v.acceleration);
     max_quat = std::max(max_quat, model::quaternion_norm_error(s));
-    if (csv) write_row(csv, s, opt.velocities);
+    if (csv) write_row(csv, s, opt);
   };
   sample();
 

@@ -37,6 +37,13 @@ struct OutputInfo {
   int count;
 };
 
+// Force and torque a joint or driver transmits to its body2, about body2's
+// joint point, in world axes and in the joint frame (body 1's a1, b1, c1).
+struct JointReaction {
+  Vec3 force, torque;
+  Vec3 force_joint, torque_joint;
+};
+
 struct Energy {
   double kinetic;
   double potential;  // gravity (zero at the origin) plus springs

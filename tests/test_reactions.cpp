@@ -1,0 +1,59 @@
+// Joint reactions from the multipliers against independent values: the A01
+// bar tension from energy conservation and the radial balance, and a welded
+// bracket whose reaction follows from statics, the same in every scheme.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "a01_pendulum.hpp"
+#include "cantilever_ali3p.hpp"
+#include "cantilever_baumgarte.hpp"
+#include "cantilever_blajer.hpp"
+#include "cantilever_pcst.hpp"
+
+namespace {
+
+#define CANTILEVER_REACTION(model)                                 \
+  [] {                                                             \
+    namespace m = mbrt::models::model;                             \
+    m::State s = m::initial_state();                               \
+    for (int i = 0; i < 1000; ++i) REQUIRE(m::step(s) == mbrt::StepStatus::ok); \
+    m::Reactions r;                                                \
+    m::reactions(s, r);                                            \
+    return r[0];                                                   \
+  }()
+
+}  // namespace
+
+TEST_CASE("A01: the bar's reaction on the bob is the tension -3 m g y along the bar, towards the pivot") {
+  namespace m = mbrt::models::a01_pendulum;
+  m::State s = m::initial_state();
+  double worst = 0.0;
+  for (int i = 1; i <= 40000; ++i) {  // 10 s at 2.5e-4
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    if (i % 100 != 0) continue;
+    m::Reactions r;
+    m::reactions(s, r);
+    const mbrt::Vec3 bob = s.particle[0].r;
+    const mbrt::Vec3 expected = -(-3.0 * 9.81 * bob.y()) * bob.normalized();
+    worst = std::max(worst, (r[0].force - expected).norm());
+    CHECK(r[0].torque.norm() < 1e-9);  // a point mass: the force passes through the bob
+  }
+  MESSAGE("A01 reaction force: max deviation from the tension " << worst << " N (of up to 29.4 N)");
+  CHECK(worst < 1e-2);
+}
+
+TEST_CASE("welded bracket: f = -m g and t = -(c - p) x m g about the weld, in every scheme") {
+  const double m = 2.0;
+  const mbrt::Vec3 g(0, 0, -9.81), c(0.5, 0.2, -0.1), p(0, 0, 0);
+  const mbrt::Vec3 force = -m * g, torque = -(c - p).cross(m * g);
+  for (const mbrt::JointReaction& r : {CANTILEVER_REACTION(cantilever_pcst), CANTILEVER_REACTION(cantilever_baumgarte),
+                                       CANTILEVER_REACTION(cantilever_blajer), CANTILEVER_REACTION(cantilever_ali3p)}) {
+    MESSAGE("force " << r.force.transpose() << ", torque " << r.torque.transpose());
+    CHECK((r.force - force).norm() < 1e-6);
+    CHECK((r.torque - torque).norm() < 1e-6);
+    // The joint frame is a rotation of the world axes: lengths agree.
+    CHECK(std::abs(r.force_joint.norm() - r.force.norm()) < 1e-9);
+    CHECK(std::abs(r.torque_joint.norm() - r.torque.norm()) < 1e-9);
+  }
+}
