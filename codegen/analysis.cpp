@@ -21,6 +21,8 @@ int constraint_rows(JointType type) {
     case JointType::distance: return 1;
     case JointType::screw: return 5;
     case JointType::planar: return 3;
+    case JointType::rolling_disk: return 3;
+    case JointType::knife_edge: return 1;
   }
   return 0;
 }
@@ -36,6 +38,8 @@ const char* joint_type_name(JointType type) {
     case JointType::distance: return "distance";
     case JointType::screw: return "screw";
     case JointType::planar: return "planar";
+    case JointType::rolling_disk: return "rolling_disk";
+    case JointType::knife_edge: return "knife_edge";
   }
   return "?";
 }
@@ -95,6 +99,17 @@ mbrt::JointFrame joint_frame(const Model& model, const Joint& j, const std::stri
   const Pose p1 = initial_pose(model, j.body1);
   const Pose p2 = initial_pose(model, j.body2);
   mbrt::JointFrame f{};
+  if (j.type == JointType::rolling_disk || j.type == JointType::knife_edge) {
+    // Body 1 is the ground: its "body axes" are world axes.
+    f.c1 = j.plane_normal;
+    complete_triad(f.c1, f.a1, f.b1);
+    f.s1 = j.plane_point;
+    f.a2 = p2.R.transpose() * (j.type == JointType::rolling_disk ? j.axis : j.direction);
+    // Reactions are taken about the disk's centre, or the knife edge's point.
+    if (j.type == JointType::knife_edge) f.s2 = body_point(model, j.body2, j.point, j.where, key + ".point");
+    f.length = j.radius;
+    return f;
+  }
   if (j.type == JointType::distance) {
     f.s1 = body_point(model, j.body1, j.point1, j.where, key + ".point1");
     f.s2 = body_point(model, j.body2, j.point2, j.where, key + ".point2");
@@ -230,12 +245,16 @@ Analysis analyse(const Model& model) {
     const std::string key = "joints[" + std::to_string(i) + "]";
     a.constraints.push_back({j.name, j.where, joint_type_name(j.type), j.body1, j.body2, constraint_rows(j.type),
                              a.constraint_rows, joint_frame(model, j, key), nullptr});
+    ConstraintBlock& block = a.constraints.back();
+    block.holonomic_rows = j.type == JointType::knife_edge ? 0 : j.type == JointType::rolling_disk ? 1 : block.rows;
+    a.nonholonomic = a.nonholonomic || block.holonomic_rows < block.rows;
     a.constraint_rows += a.constraints.back().rows;
   }
   for (size_t i = 0; i < model.drivers.size(); ++i) {
     const Driver& d = model.drivers[i];
     const std::string key = "drivers[" + std::to_string(i) + "]";
-    ConstraintBlock block{d.name, d.where, driver_kernel(d.type), d.body1, d.body2, 1, a.constraint_rows, {}, &d.function};
+    ConstraintBlock block{d.name, d.where, driver_kernel(d.type), d.body1, d.body2, 1, a.constraint_rows, {}, &d.function,
+                          1};
     if (d.type == DriverType::distance) {
       block.frame.s1 = body_point(model, d.body1, d.point1, d.where, key + ".point1");
       block.frame.s2 = body_point(model, d.body2, d.point2, d.where, key + ".point2");

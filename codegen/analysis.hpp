@@ -33,6 +33,7 @@ struct ConstraintBlock {
   int first_row;        // offset in the stacked multiplier vector
   mbrt::JointFrame frame;
   const TimeFunction* function = nullptr;  // drivers only (points into the Model)
+  int holonomic_rows = 0;  // the first rows; the rest act on velocities only (rolling_disk, knife_edge)
 };
 
 struct ForcePlan {
@@ -76,6 +77,7 @@ struct Analysis {
   std::vector<ConstraintBlock> constraints;  // joints, then drivers
   int constraint_rows = 0;
   bool rheonomic = false;                    // drivers present: explicit time terms
+  bool nonholonomic = false;                 // rows on velocities only
   std::vector<ForcePlan> forces;
   std::vector<InputPlan> inputs;  // same order as Model::inputs
   FactorPattern pattern;

@@ -20,6 +20,10 @@ std::string rows_literal(const std::string& name, const std::vector<double>& val
   return s + ").finished();\n";
 }
 
+// Diagonal shift that removes a row from a solve with S (its multiplier
+// comes out ~1e-12 of what it would be).
+constexpr double kDecoupled = 1.0e12;
+
 }  // namespace
 
 void Emitter::ali3p_constants(std::ostringstream& o) const {
@@ -32,8 +36,12 @@ void Emitter::ali3p_constants(std::ostringstream& o) const {
   for (int j = 0; j < blocks(); ++j) {
     for (int r = 0; r < rows(j); ++r) {
       const double a = p.alpha[static_cast<size_t>(j)];
-      alpha.push_back(a);
-      tangent_shift.push_back(1.0 / (c * a));
+      // Rows on velocities stay out of the index-3 stage (Dopico et al. 2014:
+      // putting them there is wrong): no penalty, and a shift that decouples
+      // them from the tangent's solve. They enter through the projections.
+      const bool holonomic = r < block(j).holonomic_rows;
+      alpha.push_back(holonomic ? a : 0.0);
+      tangent_shift.push_back(holonomic ? 1.0 / (c * a) : kDecoupled);
       // Never below the regularization that keeps redundant rows factorable.
       projection_shift.push_back(std::max(1.0 / (w * a), a_.regularization));
     }

@@ -31,8 +31,9 @@ const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "posit
                         "orientation", "velocity", "angular_velocity"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
 // Keys of every joint / force type; each type then takes a subset.
-const Keys kJointKeys = {"name", "type", "body1", "body2", "point", "axis",
-                         "axis1", "axis2", "point1", "point2", "length", "lead"};
+const Keys kJointKeys = {"name",   "type",   "body1",  "body2", "point",     "axis",        "axis1",
+                         "axis2",  "point1", "point2", "length", "lead", "body", "radius", "direction",
+                         "plane_point", "plane_normal"};
 const Keys kDriverKeys = {"name", "type", "joint", "body1", "body2", "point1", "point2", "function"};
 const Keys kFunctionKeys = {"polynomial", "sine"};
 const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
@@ -53,7 +54,8 @@ const std::vector<std::pair<std::string, JointType>> kJointTypes = {
     {"universal", JointType::universal},     {"cylindrical", JointType::cylindrical},
     {"prismatic", JointType::prismatic},     {"fixed", JointType::fixed},
     {"distance", JointType::distance},       {"screw", JointType::screw},
-    {"planar", JointType::planar}};
+    {"planar", JointType::planar},           {"rolling_disk", JointType::rolling_disk},
+    {"knife_edge", JointType::knife_edge}};
 const std::vector<std::pair<std::string, DriverType>> kDriverTypes = {
     {"joint_angle", DriverType::joint_angle},
     {"joint_distance", DriverType::joint_distance},
@@ -451,6 +453,8 @@ Body parse_body(const Value& item, std::map<std::string, int>& names_seen) {
 Keys joint_keys(JointType type) {
   Keys keys = {"name", "type", "body1", "body2"};
   switch (type) {
+    case JointType::rolling_disk: return {"name", "type", "body", "radius", "axis", "plane_point", "plane_normal"};
+    case JointType::knife_edge: return {"name", "type", "body", "point", "direction", "plane_normal"};
     case JointType::revolute:
     case JointType::cylindrical:
     case JointType::prismatic:
@@ -464,6 +468,29 @@ Keys joint_keys(JointType type) {
   return keys;
 }
 
+// A rolling_disk or knife_edge: a body on the ground plane.
+Joint parse_contact(const Section& s, const Model& model, Joint& j) {
+  j.body1 = kGround;
+  const Value body = s.get("body");
+  j.body2 = read_body_ref(body, model);
+  if (j.body2 == kGround) fail(body, "the ground cannot touch itself; name a body");
+  j.plane_normal = read_axis(s.get("plane_normal"));
+  if (j.type == JointType::rolling_disk) {
+    j.radius = read_positive(s.get("radius"));
+    j.axis = read_axis(s.get("axis"));
+    j.plane_point = read_vector3(s.get("plane_point"));
+  } else {
+    j.point = read_vector3(s.get("point"));
+    const Value direction = s.get("direction");
+    j.direction = read_axis(direction);
+    if (!(std::abs(j.direction.dot(j.plane_normal)) < kPerpendicularTolerance)) {
+      fail(direction, "the edge direction must lie in the plane (direction . plane_normal = " +
+                          format_number(j.direction.dot(j.plane_normal)) + ")");
+    }
+  }
+  return j;
+}
+
 Joint parse_joint(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
   const Section s(item, kJointKeys);
   Joint j;
@@ -474,6 +501,7 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   const Value type = s.get("type");
   j.type = read_type(type, kJointTypes);
   s.restrict_to(joint_keys(j.type), "a " + type.node.Scalar() + " joint");
+  if (j.type == JointType::rolling_disk || j.type == JointType::knife_edge) return parse_contact(s, model, j);
 
   j.body1 = read_body_ref(s.get("body1"), model);
   const Value body2 = s.get("body2");
@@ -530,6 +558,9 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
     case JointType::fixed:
       j.point = read_vector3(s.get("point"));
       break;
+    case JointType::rolling_disk:
+    case JointType::knife_edge:
+      break;  // parse_contact
   }
   return j;
 }

@@ -9,6 +9,7 @@
 #include "mbrt/joints.hpp"
 #include "mbrt/mass_properties.hpp"
 #include "mbrt/model_api.hpp"
+#include "mbrt/nonholonomic.hpp"
 #include "mbrt/rotation.hpp"
 
 namespace mbrt {
