@@ -23,6 +23,8 @@ int constraint_rows(JointType type) {
     case JointType::planar: return 3;
     case JointType::rolling_disk: return 3;
     case JointType::knife_edge: return 1;
+    case JointType::rolling_ball: return 3;
+    case JointType::velocity_toward: return 1;
   }
   return 0;
 }
@@ -40,6 +42,8 @@ const char* joint_type_name(JointType type) {
     case JointType::planar: return "planar";
     case JointType::rolling_disk: return "rolling_disk";
     case JointType::knife_edge: return "knife_edge";
+    case JointType::rolling_ball: return "rolling_ball";
+    case JointType::velocity_toward: return "velocity_toward";
   }
   return "?";
 }
@@ -88,7 +92,8 @@ void complete_triad(const Eigen::Vector3d& a, Eigen::Vector3d& b, Eigen::Vector3
 }
 
 mbrt::JointFrame joint_frame(const Model& model, const Joint& j, const std::string& key) {
-  const bool needs_orientation = j.type != JointType::spherical && j.type != JointType::distance;
+  const bool needs_orientation =
+      j.type != JointType::spherical && j.type != JointType::distance && j.type != JointType::velocity_toward;
   for (int body : {j.body1, j.body2}) {
     if (needs_orientation && is_particle(model, body)) {
       throw ModelError(j.where, key,
@@ -99,14 +104,20 @@ mbrt::JointFrame joint_frame(const Model& model, const Joint& j, const std::stri
   const Pose p1 = initial_pose(model, j.body1);
   const Pose p2 = initial_pose(model, j.body2);
   mbrt::JointFrame f{};
-  if (j.type == JointType::rolling_disk || j.type == JointType::knife_edge) {
+  if (j.type == JointType::velocity_toward) {
+    f.s1 = body_point(model, j.body1, j.point1, j.where, key + ".point1");
+    f.s2 = body_point(model, j.body2, j.point2, j.where, key + ".point2");
+    f.c1 = j.plane_normal;  // a world direction, whatever body 1 does
+    return f;
+  }
+  if (j.type == JointType::rolling_disk || j.type == JointType::rolling_ball || j.type == JointType::knife_edge) {
     // Body 1 is the ground: its "body axes" are world axes.
     f.c1 = j.plane_normal;
     complete_triad(f.c1, f.a1, f.b1);
     f.s1 = j.plane_point;
     f.a2 = p2.R.transpose() * (j.type == JointType::rolling_disk ? j.axis : j.direction);
-    // Reactions are taken about the disk's centre, or the knife edge's point.
-    if (j.type == JointType::knife_edge) f.s2 = body_point(model, j.body2, j.point, j.where, key + ".point");
+    // Reactions are taken about the disk's centre, the ball's centre or the knife edge's point.
+    if (j.type != JointType::rolling_disk) f.s2 = body_point(model, j.body2, j.point, j.where, key + ".point");
     f.length = j.radius;
     return f;
   }
@@ -246,7 +257,13 @@ Analysis analyse(const Model& model) {
     a.constraints.push_back({j.name, j.where, joint_type_name(j.type), j.body1, j.body2, constraint_rows(j.type),
                              a.constraint_rows, joint_frame(model, j, key), nullptr});
     ConstraintBlock& block = a.constraints.back();
-    block.holonomic_rows = j.type == JointType::knife_edge ? 0 : j.type == JointType::rolling_disk ? 1 : block.rows;
+    switch (j.type) {
+      case JointType::knife_edge:
+      case JointType::velocity_toward: block.holonomic_rows = 0; break;
+      case JointType::rolling_disk:
+      case JointType::rolling_ball: block.holonomic_rows = 1; break;
+      default: block.holonomic_rows = block.rows;
+    }
     a.nonholonomic = a.nonholonomic || block.holonomic_rows < block.rows;
     a.constraint_rows += a.constraints.back().rows;
   }

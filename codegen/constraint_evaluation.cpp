@@ -45,6 +45,8 @@ void evaluate_block(const ConstraintBlock& b, const mbrt::BodyMotion& m1, const 
   if (k == "planar") return stack(mbrt::planar(f, m1, m2), b, out);
   if (k == "rolling_disk") return stack(mbrt::rolling_disk(f, m1, m2), b, out);
   if (k == "knife_edge") return stack(mbrt::knife_edge(f, m1, m2), b, out);
+  if (k == "rolling_ball") return stack(mbrt::rolling_ball(f, m1, m2), b, out);
+  if (k == "velocity_toward") return stack(mbrt::velocity_toward(f, m1, m2), b, out);
   const mbrt::TimeValue target = evaluate(*b.function, t);
   if (k == "joint_angle_driver") return stack(mbrt::joint_angle_driver(f, m1, m2, target), b, out);
   if (k == "joint_distance_driver") return stack(mbrt::joint_distance_driver(f, m1, m2, target), b, out);

@@ -47,10 +47,12 @@ struct Body {
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // body axes
 };
 
-// rolling_disk and knife_edge are contacts of one body with the ground plane
-// (body1 = ground): nonholonomic rows, see include/mbrt/nonholonomic.hpp.
+// rolling_disk, rolling_ball and knife_edge are contacts of one body with the
+// ground plane (body1 = ground); velocity_toward is Dopico et al.'s two-mass
+// constraint. All have nonholonomic rows, see include/mbrt/nonholonomic.hpp.
 enum class JointType {
-  spherical, revolute, universal, cylindrical, prismatic, fixed, distance, screw, planar, rolling_disk, knife_edge
+  spherical, revolute, universal, cylindrical, prismatic, fixed, distance, screw, planar,
+  rolling_disk, rolling_ball, knife_edge, velocity_toward
 };
 
 struct Joint {
@@ -67,10 +69,11 @@ struct Joint {
   Eigen::Vector3d point2 = Eigen::Vector3d::Zero();  // world (distance)
   double length = 0.0;                               // distance: given, or |point2 - point1|
   double lead = 0.0;                                 // screw: translation per turn along +axis, m (non-zero)
-  double radius = 0.0;                               // rolling_disk, m
+  double radius = 0.0;                               // rolling_disk, rolling_ball, m
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();     // knife_edge: unit, world at t = 0, fixed in the body
-  Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();    // rolling_disk: a point of the ground plane
-  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();  // rolling_disk, knife_edge: unit, world
+  Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();    // rolling_disk, rolling_ball: a point of the ground plane
+  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();  // contacts, velocity_toward: unit, world
+  // rolling_ball: the sphere's centre (world, t = 0) is `point`, default the COM.
 };
 
 // f(t) of a driver: a polynomial sum c[k] t^k, or offset + amplitude sin(omega t + phase).

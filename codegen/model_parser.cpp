@@ -33,7 +33,7 @@ const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  //
 // Keys of every joint / force type; each type then takes a subset.
 const Keys kJointKeys = {"name",   "type",   "body1",  "body2", "point",     "axis",        "axis1",
                          "axis2",  "point1", "point2", "length", "lead", "body", "radius", "direction",
-                         "plane_point", "plane_normal"};
+                         "plane_point", "plane_normal", "center"};
 const Keys kDriverKeys = {"name", "type", "joint", "body1", "body2", "point1", "point2", "function"};
 const Keys kFunctionKeys = {"polynomial", "sine"};
 const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
@@ -55,7 +55,8 @@ const std::vector<std::pair<std::string, JointType>> kJointTypes = {
     {"prismatic", JointType::prismatic},     {"fixed", JointType::fixed},
     {"distance", JointType::distance},       {"screw", JointType::screw},
     {"planar", JointType::planar},           {"rolling_disk", JointType::rolling_disk},
-    {"knife_edge", JointType::knife_edge}};
+    {"knife_edge", JointType::knife_edge},   {"rolling_ball", JointType::rolling_ball},
+    {"velocity_toward", JointType::velocity_toward}};
 const std::vector<std::pair<std::string, DriverType>> kDriverTypes = {
     {"joint_angle", DriverType::joint_angle},
     {"joint_distance", DriverType::joint_distance},
@@ -455,6 +456,8 @@ Keys joint_keys(JointType type) {
   switch (type) {
     case JointType::rolling_disk: return {"name", "type", "body", "radius", "axis", "plane_point", "plane_normal"};
     case JointType::knife_edge: return {"name", "type", "body", "point", "direction", "plane_normal"};
+    case JointType::rolling_ball: return {"name", "type", "body", "radius", "center", "plane_point", "plane_normal"};
+    case JointType::velocity_toward: return {"name", "type", "body1", "body2", "point1", "point2", "plane_normal"};
     case JointType::revolute:
     case JointType::cylindrical:
     case JointType::prismatic:
@@ -468,17 +471,22 @@ Keys joint_keys(JointType type) {
   return keys;
 }
 
-// A rolling_disk or knife_edge: a body on the ground plane.
+// A rolling_disk, rolling_ball or knife_edge: a body on the ground plane.
 Joint parse_contact(const Section& s, const Model& model, Joint& j) {
   j.body1 = kGround;
   const Value body = s.get("body");
   j.body2 = read_body_ref(body, model);
   if (j.body2 == kGround) fail(body, "the ground cannot touch itself; name a body");
   j.plane_normal = read_axis(s.get("plane_normal"));
-  if (j.type == JointType::rolling_disk) {
+  if (j.type == JointType::rolling_disk || j.type == JointType::rolling_ball) {
     j.radius = read_positive(s.get("radius"));
-    j.axis = read_axis(s.get("axis"));
     j.plane_point = read_vector3(s.get("plane_point"));
+  }
+  if (j.type == JointType::rolling_disk) {
+    j.axis = read_axis(s.get("axis"));
+  } else if (j.type == JointType::rolling_ball) {
+    const auto center = s.find("center");
+    j.point = center ? read_vector3(*center) : model.bodies[static_cast<size_t>(j.body2)].position;
   } else {
     j.point = read_vector3(s.get("point"));
     const Value direction = s.get("direction");
@@ -501,7 +509,9 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   const Value type = s.get("type");
   j.type = read_type(type, kJointTypes);
   s.restrict_to(joint_keys(j.type), "a " + type.node.Scalar() + " joint");
-  if (j.type == JointType::rolling_disk || j.type == JointType::knife_edge) return parse_contact(s, model, j);
+  if (j.type == JointType::rolling_disk || j.type == JointType::rolling_ball || j.type == JointType::knife_edge) {
+    return parse_contact(s, model, j);
+  }
 
   j.body1 = read_body_ref(s.get("body1"), model);
   const Value body2 = s.get("body2");
@@ -558,7 +568,13 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
     case JointType::fixed:
       j.point = read_vector3(s.get("point"));
       break;
+    case JointType::velocity_toward:
+      j.point1 = read_vector3(s.get("point1"));
+      j.point2 = read_vector3(s.get("point2"));
+      j.plane_normal = read_axis(s.get("plane_normal"));
+      break;
     case JointType::rolling_disk:
+    case JointType::rolling_ball:
     case JointType::knife_edge:
       break;  // parse_contact
   }

@@ -15,7 +15,9 @@
 #include "disk_pushed_pcst.hpp"
 #include "disk_rolling_ali3p.hpp"
 #include "disk_rolling_pcst.hpp"
+#include "ball_offset.hpp"
 #include "knife_sled.hpp"
+#include "two_masses.hpp"
 
 namespace {
 
@@ -78,7 +80,7 @@ void check_against_finite_differences(Kernel kernel, const mbrt::JointFrame& f, 
 
 }  // namespace
 
-TEST_CASE("rolling_disk and knife_edge rows against finite differences") {
+TEST_CASE("rolling_disk, rolling_ball and knife_edge rows against finite differences") {
   mbrt::JointFrame f{};
   f.c1 = mbrt::Vec3(0.1, -0.2, 1).normalized();
   f.a1 = f.c1.cross(mbrt::Vec3::UnitX()).normalized();
@@ -89,6 +91,7 @@ TEST_CASE("rolling_disk and knife_edge rows against finite differences") {
   f.length = 0.5;
   check_against_finite_differences([](const auto&... a) { return mbrt::rolling_disk(a...); }, f, 1);
   check_against_finite_differences([](const auto&... a) { return mbrt::knife_edge(a...); }, f, 0);
+  check_against_finite_differences([](const auto&... a) { return mbrt::rolling_ball(a...); }, f, 1);
 }
 
 TEST_CASE("disk pushed by 3 N (m = 5 kg, rho = 0.5 m): a = 0.4 m/s^2, friction -1 N, normal m g, every scheme") {
@@ -157,4 +160,60 @@ TEST_CASE("knife edge: pushed by (1, 1, 0) N, the sled moves along the edge only
   CHECK(std::abs(s.rigid[0].r.y()) < 1e-12);
   CHECK(std::abs(r[0].force.y() - (-1.0)) < 1e-9);
   CHECK(std::abs(r[0].force.x()) < 1e-9);
+}
+
+TEST_CASE("two masses, A's velocity towards B: B moves freely, A pursues at constant speed") {
+  namespace m = mbrt::models::two_masses;
+  // Reference: A's pursuit curve x_A' = |v_A| (x_B - x_A) / |x_B - x_A| with
+  // the free motion x_B = (1 + t, t^2), by RK4 at 1e-4 s.
+  const auto rate = [](double t, const mbrt::Vec3& a) {
+    const mbrt::Vec3 b(1.0 + t, t * t, 0.0);
+    return mbrt::Vec3((b - a).normalized());
+  };
+  mbrt::Vec3 a_ref(0, 0, 0);
+  const double dt = 1e-4;
+  m::State s = m::initial_state();
+  double worst_a = 0.0, worst_b = 0.0, worst_speed = 0.0;
+  for (int k = 1; k <= 5000; ++k) {  // 5 s
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    for (int i = 0; i < 10; ++i) {
+      const double t = (k - 1) * m::kStep + i * dt;
+      const mbrt::Vec3 k1 = rate(t, a_ref), k2 = rate(t + dt / 2, a_ref + dt / 2 * k1);
+      const mbrt::Vec3 k3 = rate(t + dt / 2, a_ref + dt / 2 * k2), k4 = rate(t + dt, a_ref + dt * k3);
+      a_ref += dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    const double t = s.t;
+    worst_b = std::max(worst_b, (s.particle[1].r - mbrt::Vec3(1.0 + t, t * t, 0.0)).norm());
+    worst_a = std::max(worst_a, (s.particle[0].r - a_ref).norm());
+    worst_speed = std::max(worst_speed, std::abs(s.particle[0].v.norm() - 1.0));
+  }
+  MESSAGE("max error: A " << worst_a << " m, B " << worst_b << " m, A's speed " << worst_speed << " m/s");
+  CHECK(worst_b < 1e-9);
+  CHECK(worst_a < 1e-4);
+  CHECK(worst_speed < 1e-5);
+}
+
+TEST_CASE("bowling ball with its centre of mass off the centre: energy kept, Newton's law with the contact force") {
+  namespace m = mbrt::models::ball_offset;
+  m::State s = m::initial_state();
+  const double e0 = m::energy(s).total();
+  mbrt::Vec3 v_before = s.rigid[0].v;
+  REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+  double worst = 0.0, largest = 0.0, drift = 0.0;
+  for (int i = 0; i < 20000; ++i) {  // 10 s
+    m::Reactions r;
+    m::reactions(s, r);
+    const mbrt::Vec3 f = r[0].force + 7.0 * mbrt::Vec3(0, 0, -9.81);
+    const mbrt::Vec3 v_now = s.rigid[0].v;
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    const mbrt::Vec3 ma = 7.0 * (s.rigid[0].v - v_before) / (2.0 * m::kStep);
+    worst = std::max(worst, (ma - f).norm());
+    largest = std::max(largest, f.norm());
+    v_before = v_now;
+    drift = std::max(drift, std::abs(m::energy(s).total() - e0));
+  }
+  MESSAGE("bowling ball: max |m a - (f + m g)| " << worst << " N of " << largest << " N, max |E - E0| " << drift << " J");
+  CHECK(worst < 3e-3 * largest);  // O(h^2) of the central difference at 10 rad/s
+  CHECK(largest > 1.0);            // the offset mass makes it wobble
+  CHECK(drift < 1e-5);             // of 13.9 J
 }

@@ -50,6 +50,29 @@ inline ConstraintRows<3> rolling_disk(const JointFrame& f, const BodyMotion& gro
   return rows;
 }
 
+// Sphere of radius f.length whose centre sits at f.s2 (body axes, off the
+// COM for the "bowling ball") rolling without slip on the plane through f.s1
+// with unit normal f.c1 (tangents f.a1, f.b1). The contact point is the
+// centre minus radius times the normal. Row 0: the centre's height above the
+// plane minus the radius (holonomic); rows 1, 2: no tangential velocity of
+// the material point at the contact. Acceleration term:
+// omega x (omega x (centre - COM)).
+inline ConstraintRows<3> rolling_ball(const JointFrame& f, const BodyMotion& ground, const BodyMotion& ball) noexcept {
+  (void)ground;
+  const Vec3& e = f.c1;
+  const CarriedVector centre = carried_point(ball.pose, ball.vel, f.s2);
+  const Vec3 offset = centre.x - ball.pose.r;  // world, from the COM
+  const CarriedVector c = carried_point(ball.pose, ball.vel, ball.pose.R.transpose() * (offset - f.length * e));
+  const Vec3 omega = ball.pose.R * ball.vel.w;
+  const Vec3 quad = omega.cross(omega.cross(offset));
+  ConstraintRows<3> rows;
+  detail::set_velocity_row(rows, 0, e, c.J, e.dot(quad));
+  rows.phi[0] = e.dot(centre.x - f.s1) - f.length;
+  detail::set_velocity_row(rows, 1, f.a1, c.J, f.a1.dot(quad));
+  detail::set_velocity_row(rows, 2, f.b1, c.J, f.b1.dot(quad));
+  return rows;
+}
+
 // Knife edge: the point f.s2 of the body (body axes) moves only along the
 // edge f.a2 (body axes) within the plane of unit normal f.c1 (world):
 // (n x edge) . v_P = 0.
@@ -61,6 +84,21 @@ inline ConstraintRows<1> knife_edge(const JointFrame& f, const BodyMotion& groun
   const Vec3 side = e.cross(edge.x);
   ConstraintRows<1> rows;
   detail::set_velocity_row(rows, 0, side, p.J, e.cross(edge.x_dot).dot(p.x_dot) + side.dot(p.quad));
+  return rows;
+}
+
+// The velocity of point f.s1 of body 1 points towards point f.s2 of body 2,
+// in the plane of unit normal f.c1 (Dopico et al. 2014's two masses):
+// (n x (x2 - x1)) . v1 = 0. Body 2's velocity does not enter the row.
+inline ConstraintRows<1> velocity_toward(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  const CarriedVector a = carried_point(m1.pose, m1.vel, f.s1);
+  const CarriedVector b = carried_point(m2.pose, m2.vel, f.s2);
+  const Vec3 side = f.c1.cross(b.x - a.x);
+  ConstraintRows<1> rows;
+  rows.phi[0] = 0.0;
+  rows.J1.row(0) = side.transpose() * a.J;
+  rows.J2.row(0).setZero();
+  rows.quad[0] = f.c1.cross(b.x_dot - a.x_dot).dot(a.x_dot) + side.dot(a.quad);
   return rows;
 }
 
