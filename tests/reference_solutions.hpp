@@ -31,21 +31,29 @@ inline void rk4_step(Q& q, Q& rate, double h, Acceleration acc) {
   rate += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
 }
 
+// Integrates q'' = acc(q, q') from (q0, rate0) by classical RK4 at step h
+// and returns observe(q) at t = 0, dt, 2 dt, ... up to t_end.
+template <class Q, class Acceleration, class Observe>
+inline std::vector<mbrt::Vec3> sampled_rk4(Q q, Q rate, Acceleration acc, Observe observe, double t_end, double dt,
+                                           double h) {
+  std::vector<mbrt::Vec3> out{observe(q)};
+  const long per_sample = std::lround(dt / h);
+  const long samples = std::lround(t_end / dt);
+  for (long s = 0; s < samples; ++s) {
+    for (long i = 0; i < per_sample; ++i) rk4_step(q, rate, h, acc);
+    out.push_back(observe(q));
+  }
+  return out;
+}
+
 // A01 pendulum (1 kg on a 1 m massless bar from the horizontal, g = 9.81):
 // the bob position at t = 0, dt, 2 dt, ... up to t_end, from the minimal-
 // coordinate equation phi'' = -g cos(phi), phi(0) = pi, by classical RK4 at
 // step h. Reproduces the published A01 table to its 6 digits at h <= 5e-4.
 inline std::vector<mbrt::Vec3> a01_bob_positions(double t_end, double dt, double h) {
   const auto acc = [](double a) { return -9.81 * std::cos(a); };
-  double phi = M_PI, rate = 0.0;
-  std::vector<mbrt::Vec3> out{{std::cos(phi), std::sin(phi), 0.0}};
-  const long per_sample = std::lround(dt / h);
-  const long samples = std::lround(t_end / dt);
-  for (long s = 0; s < samples; ++s) {
-    for (long i = 0; i < per_sample; ++i) rk4_step(phi, rate, h, acc);
-    out.emplace_back(std::cos(phi), std::sin(phi), 0.0);
-  }
-  return out;
+  const auto bob = [](double phi) { return mbrt::Vec3(std::cos(phi), std::sin(phi), 0.0); };
+  return sampled_rk4(M_PI, 0.0, acc, bob, t_end, dt, h);
 }
 
 // A02 N four-bar (N windows of uniform 1 kg, 1 m rods; tools/make_n_four_bar.py):
@@ -56,15 +64,8 @@ inline std::vector<mbrt::Vec3> a01_bob_positions(double t_end, double dt, double
 inline std::vector<mbrt::Vec3> a02_b0_positions(int n, double t_end, double dt, double h) {
   const double k = 3.0 * (3 * n + 1) / (2.0 * (4 * n + 1));
   const auto acc = [k](double a) { return -k * 9.81 * std::cos(a); };
-  double th = M_PI / 2, rate = -1.0;
-  std::vector<mbrt::Vec3> out{{std::cos(th), std::sin(th), 0.0}};
-  const long per_sample = std::lround(dt / h);
-  const long samples = std::lround(t_end / dt);
-  for (long s = 0; s < samples; ++s) {
-    for (long i = 0; i < per_sample; ++i) rk4_step(th, rate, h, acc);
-    out.emplace_back(std::cos(th), std::sin(th), 0.0);
-  }
-  return out;
+  const auto b0 = [](double th) { return mbrt::Vec3(std::cos(th), std::sin(th), 0.0); };
+  return sampled_rk4(M_PI / 2, -1.0, acc, b0, t_end, dt, h);
 }
 
 struct TimedValue {
@@ -116,15 +117,8 @@ inline std::vector<mbrt::Vec3> chain_tip_positions(int n, double t_end, double d
     for (int j = 0; j < n; ++j) p += mbrt::Vec3(std::cos(th(j)), std::sin(th(j)), 0.0);
     return p;
   };
-  Eigen::VectorXd th = Eigen::VectorXd::Zero(n), rate = Eigen::VectorXd::Zero(n);
-  std::vector<mbrt::Vec3> out{tip(th)};
-  const long per_sample = std::lround(dt / h);
-  const long samples = std::lround(t_end / dt);
-  for (long s = 0; s < samples; ++s) {
-    for (long i = 0; i < per_sample; ++i) rk4_step(th, rate, h, acc);
-    out.push_back(tip(th));
-  }
-  return out;
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(n);
+  return sampled_rk4(rest, rest, acc, tip, t_end, dt, h);
 }
 
 }  // namespace reference

@@ -13,8 +13,7 @@ Inertia about the centre: m L^2 / 12 about both transverse axes and 1e-4
 kg m^2 about the rod axis (positive definite; only acts out of the plane),
 as in tools/make_n_four_bar.py.
 """
-import argparse
-import sys
+import model_cli
 
 TRANSVERSE = 1.0 / 12.0
 AXIAL = 1.0e-4
@@ -41,15 +40,5 @@ def model(n, name):
     return "\n".join(out) + "\n"
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("n", type=int, help="number of links (N >= 1)")
-    parser.add_argument("--name", help="model name (default chain_N)")
-    args = parser.parse_args()
-    if args.n < 1:
-        parser.error("N must be at least 1")
-    sys.stdout.write(model(args.n, args.name or "chain_%d" % args.n))
-
-
 if __name__ == "__main__":
-    main()
+    model_cli.run(__doc__, model, "chain_%d", "number of links")
