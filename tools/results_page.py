@@ -38,7 +38,10 @@ def provenance(out, name):
     command = [l for l in lines if l.startswith("command: ")]
     if command:
         paragraph(out, "Command: `%s`" % command[0][len("command: "):])
-    paragraph(out, "Machine: " + "; ".join(l for l in lines if not l.startswith("command: ")))
+    for line in lines:
+        if not line.startswith("command: "):
+            out.append("- " + line)
+    out.append("")
 
 
 def paragraph(out, text):
