@@ -142,7 +142,10 @@ def wcet(out):
     paragraph(out,
         "Per-step times of `step()` (steady clock around each call; `timer` is the cost of reading it), "
         "warm, with the caches evicted before every step (64 MB written), and warm under `stress-ng` "
-        "on every core; the instructions of 200 sampled steps counted by callgrind, each step alone.")
+        "on every core; the instructions of 200 sampled steps counted by callgrind, each step alone. "
+        "The process runs at normal priority on a shared virtual machine without isolated cores, so "
+        "the largest times include preemption by other processes; the instruction count is the figure "
+        "that does not depend on the machine.")
     for f in files:
         tag = os.path.basename(f)[:-4]
         paragraph(out, "### %s" % tag[len("wcet_"):])
