@@ -1,6 +1,6 @@
 // Adapts a generated model's namespace to a type, so the benchmark tests can
 // run every scheme's variant of a model through one template:
-//   BENCH_MODEL(Pcst, a02_n40_pcst);  then  Pcst::step(s), Pcst::slot("crank0") ...
+//   BENCH_MODEL(Pcst, a02_n40_pcst);  then  Pcst::step(s), Pcst::slot("crank0"), Pcst::body("bob") ...
 #pragma once
 
 #include <string_view>
@@ -16,9 +16,14 @@
     static mbrt::StepStatus step(State& s) { return mbrt::models::ns::step(s); }                                     \
     static mbrt::Energy energy(const State& s) { return mbrt::models::ns::energy(s); }                               \
     static mbrt::ConstraintViolation violation(const State& s) { return mbrt::models::ns::constraint_violation(s); } \
-    static int slot(std::string_view name) {                                                                         \
+    static double quaternion_norm_error(const State& s) { return mbrt::models::ns::quaternion_norm_error(s); }        \
+    static const mbrt::BodyInfo* body(std::string_view name) {                                                       \
       for (const auto& b : mbrt::models::ns::kBodyInfo)                                                              \
-        if (name == b.name) return b.slot;                                                                           \
-      return -1;                                                                                                     \
+        if (name == b.name) return &b;                                                                               \
+      return nullptr;                                                                                                \
+    }                                                                                                                \
+    static int slot(std::string_view name) {                                                                         \
+      const mbrt::BodyInfo* b = body(name);                                                                          \
+      return b ? b->slot : -1;                                                                                       \
     }                                                                                                                \
   }

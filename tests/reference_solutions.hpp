@@ -3,21 +3,47 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include <mbrt/types.hpp>
 
 namespace reference {
 
-// One classical RK4 step of the one-coordinate equation q'' = acc(q).
-template <class Acceleration>
-inline void rk4_step(double& q, double& rate, double h, Acceleration acc) {
-  const double k1p = rate, k1v = acc(q);
-  const double k2p = rate + 0.5 * h * k1v, k2v = acc(q + 0.5 * h * k1p);
-  const double k3p = rate + 0.5 * h * k2v, k3v = acc(q + 0.5 * h * k2p);
-  const double k4p = rate + h * k3v, k4v = acc(q + h * k3p);
+// One classical RK4 step of q'' = acc(q, q'), q a double or an Eigen vector.
+// acc may also take q alone (no velocity dependence).
+template <class Q, class Acceleration>
+inline void rk4_step(Q& q, Q& rate, double h, Acceleration acc) {
+  const auto a = [&acc](const Q& x, const Q& v) -> Q {
+    if constexpr (std::is_invocable_v<Acceleration, const Q&, const Q&>) {
+      return acc(x, v);
+    } else {
+      return acc(x);
+    }
+  };
+  const Q k1p = rate, k1v = a(q, k1p);
+  const Q k2p = rate + 0.5 * h * k1v, k2v = a(q + 0.5 * h * k1p, k2p);
+  const Q k3p = rate + 0.5 * h * k2v, k3v = a(q + 0.5 * h * k2p, k3p);
+  const Q k4p = rate + h * k3v, k4v = a(q + h * k3p, k4p);
   q += h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p);
   rate += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+}
+
+// Integrates q'' = acc(q, q') from (q0, rate0) by classical RK4 at step h
+// and returns observe(q) at t = 0, dt, 2 dt, ... up to t_end.
+template <class Q, class Acceleration, class Observe>
+inline std::vector<mbrt::Vec3> sampled_rk4(Q q, Q rate, Acceleration acc, Observe observe, double t_end, double dt,
+                                           double h) {
+  std::vector<mbrt::Vec3> out{observe(q)};
+  const long per_sample = std::lround(dt / h);
+  const long samples = std::lround(t_end / dt);
+  for (long s = 0; s < samples; ++s) {
+    for (long i = 0; i < per_sample; ++i) rk4_step(q, rate, h, acc);
+    out.push_back(observe(q));
+  }
+  return out;
 }
 
 // A01 pendulum (1 kg on a 1 m massless bar from the horizontal, g = 9.81):
@@ -26,15 +52,20 @@ inline void rk4_step(double& q, double& rate, double h, Acceleration acc) {
 // step h. Reproduces the published A01 table to its 6 digits at h <= 5e-4.
 inline std::vector<mbrt::Vec3> a01_bob_positions(double t_end, double dt, double h) {
   const auto acc = [](double a) { return -9.81 * std::cos(a); };
-  double phi = M_PI, rate = 0.0;
-  std::vector<mbrt::Vec3> out{{std::cos(phi), std::sin(phi), 0.0}};
-  const long per_sample = std::lround(dt / h);
-  const long samples = std::lround(t_end / dt);
-  for (long s = 0; s < samples; ++s) {
-    for (long i = 0; i < per_sample; ++i) rk4_step(phi, rate, h, acc);
-    out.emplace_back(std::cos(phi), std::sin(phi), 0.0);
-  }
-  return out;
+  const auto bob = [](double phi) { return mbrt::Vec3(std::cos(phi), std::sin(phi), 0.0); };
+  return sampled_rk4(M_PI, 0.0, acc, bob, t_end, dt, h);
+}
+
+// A02 N four-bar (N windows of uniform 1 kg, 1 m rods; tools/make_n_four_bar.py):
+// with every crank parallel to the first and every coupler translating, the
+// crank angle theta from +x obeys theta'' = -k g cos(theta), k = 3 (3N + 1) /
+// (2 (4N + 1)), theta(0) = pi/2, theta'(0) = -1. Returns B0, the top of the
+// first crank, at t = 0, dt, 2 dt, ... up to t_end, by classical RK4 at step h.
+inline std::vector<mbrt::Vec3> a02_b0_positions(int n, double t_end, double dt, double h) {
+  const double k = 3.0 * (3 * n + 1) / (2.0 * (4 * n + 1));
+  const auto acc = [k](double a) { return -k * 9.81 * std::cos(a); };
+  const auto b0 = [](double th) { return mbrt::Vec3(std::cos(th), std::sin(th), 0.0); };
+  return sampled_rk4(M_PI / 2, -1.0, acc, b0, t_end, dt, h);
 }
 
 struct TimedValue {
@@ -49,5 +80,45 @@ struct TimedValue {
 inline constexpr TimedValue kHeavyTopHeight[] = {
     {0.05, -0.038355180}, {0.1, -0.149164701}, {0.2, -0.523983027}, {0.3, -0.897531991},
     {0.5, -0.711400258},  {1.0, -0.748490791}, {1.5, -0.001422084}, {2.0, -0.673022270}};
+
+// Planar chain of n uniform rods (mass 1 kg, length 1 m, in-plane inertia
+// 1/12 kg m^2 about the centre; tools/make_chain.py), pinned at the origin,
+// released from rest along +x, gravity 9.81 in -y. Lagrange's equations in
+// the absolute link angles th (from +x), with a_ij the lever of link j's angle
+// on link i's centre (1 for j < i, 1/2 for j = i) and C_jk = sum_i a_ij a_ik:
+//   sum_k (C_jk cos(th_j - th_k) + I d_jk) th_k'' + sum_k C_jk sin(th_j - th_k) th_k'^2
+//     + g b_j cos(th_j) = 0,   b_j = sum_i a_ij.
+// Returns the tip of the last link at t = 0, dt, 2 dt, ... up to t_end, by
+// classical RK4 at step h.
+inline std::vector<mbrt::Vec3> chain_tip_positions(int n, double t_end, double dt, double h) {
+  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      const double aij = j < i ? 1.0 : 0.5;
+      b(j) += aij;
+      for (int k = 0; k <= i; ++k) c(j, k) += aij * (k < i ? 1.0 : 0.5);
+    }
+  }
+  const auto acc = [&](const Eigen::VectorXd& th, const Eigen::VectorXd& rate) -> Eigen::VectorXd {
+    Eigen::MatrixXd mass(n, n);
+    Eigen::VectorXd rhs(n);
+    for (int j = 0; j < n; ++j) {
+      rhs(j) = -9.81 * b(j) * std::cos(th(j));
+      for (int k = 0; k < n; ++k) {
+        mass(j, k) = c(j, k) * std::cos(th(j) - th(k)) + (j == k ? 1.0 / 12.0 : 0.0);
+        rhs(j) -= c(j, k) * std::sin(th(j) - th(k)) * rate(k) * rate(k);
+      }
+    }
+    return mass.llt().solve(rhs);
+  };
+  const auto tip = [n](const Eigen::VectorXd& th) {
+    mbrt::Vec3 p = mbrt::Vec3::Zero();
+    for (int j = 0; j < n; ++j) p += mbrt::Vec3(std::cos(th(j)), std::sin(th(j)), 0.0);
+    return p;
+  };
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(n);
+  return sampled_rk4(rest, rest, acc, tip, t_end, dt, h);
+}
 
 }  // namespace reference

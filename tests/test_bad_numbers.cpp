@@ -41,3 +41,14 @@ TEST_CASE("a NaN written into the state is refused without spreading") {
   s.particle[0].v.x() = 0.0;  // the caller repairs its input; stepping resumes
   CHECK(pendulum::step(s) == mbrt::StepStatus::ok);
 }
+
+TEST_CASE("an absurd velocity written into the state gives a status, not an overflowed state") {
+  pendulum::State s = pendulum::initial_state();
+  for (int i = 0; i < 10; ++i) pendulum::step(s);
+  s.particle[0].v.y() = 1e300;  // its centripetal force overflows a double
+  const pendulum::State before = s;
+  CHECK(pendulum::step(s) == mbrt::StepStatus::non_finite);
+  CHECK(s.t == before.t);
+  CHECK(s.particle[0].r == before.particle[0].r);
+  CHECK(s.particle[0].v == before.particle[0].v);
+}

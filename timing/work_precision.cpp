@@ -1,101 +1,101 @@
-// Run time against error for every scheme and step size on reference
-// problems, measured alternately in one process so machine noise hits all
-// variants alike. Writes a CSV table on stdout.
-//
-// Errors are against independent references: A01, the bob position at every
-// 0.5 s up to 20 s against the minimal-coordinate equation integrated by RK4;
-// heavy top, the height of the centre of mass at 8 times up to 2 s against
-// the closed-form Lagrange-top solution.
-#include <algorithm>
-#include <chrono>
-#include <cmath>
+// Run time against error for every mbrt scheme and step size, and for the
+// peers' fixed-step integrators (MuJoCo, Simbody, where found), on the same
+// mechanisms against independent references (problems.hpp). All runs are
+// measured alternately in one process, several rounds, the fastest round of
+// each run kept, so machine noise hits every engine alike.
+//   work_precision [ROUNDS=3] [CSV=work_precision.csv]
+// Writes the CSV and prints a table with each run's time ratio to MuJoCo at
+// equal error.
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
-#include "reference_solutions.hpp"
+#include "equal_error.hpp"
+#include "mbrt_engine.hpp"
+#include "model_adapter.hpp"
 #include "work_precision_variants.hpp"
+#ifdef MBRT_WITH_MUJOCO
+#include "mujoco_engine.hpp"
+#endif
+#ifdef MBRT_WITH_SIMBODY
+#include "simbody_engine.hpp"
+#endif
 
 namespace {
 
-// A01 to 20 s, sampled every 0.5 s; RK4 reference at 1e-5 s.
-const std::vector<mbrt::Vec3> kA01 = reference::a01_bob_positions(20.0, 0.5, 1e-5);
+using timing::Measurement;
+using Run = std::function<Measurement()>;
 
-struct Result {
-  std::string problem, name, scheme;
-  double h = 0, error = 0, best_s = 1e300;
-  long steps = 0;
-};
-
-using Clock = std::chrono::steady_clock;
-
-template <class Model>
-Result run_a01(const char* name) {
-  typename Model::State s = Model::initial_state();
-  Result r{"a01", name, Model::kScheme, Model::kStep};
-  double stepping = 0;
-  for (size_t k = 1; k < kA01.size(); ++k) {
-    const double t = 0.5 * static_cast<double>(k);
-    const auto t0 = Clock::now();
-    while (s.t < t - 0.5 * Model::kStep) {
-      Model::step(s);
-      ++r.steps;
-    }
-    stepping += std::chrono::duration<double>(Clock::now() - t0).count();
-    r.error = std::max(r.error, (s.particle[0].r - kA01[k]).norm());
-  }
-  r.best_s = stepping;
-  return r;
-}
-
-template <class Model>
-Result run_top(const char* name) {
-  typename Model::State s = Model::initial_state();
-  Result r{"heavy_top", name, Model::kScheme, Model::kStep};
-  double stepping = 0;
-  for (const reference::TimedValue& c : reference::kHeavyTopHeight) {
-    const auto t0 = Clock::now();
-    while (s.t < c.t - 0.5 * Model::kStep) {
-      Model::step(s);
-      ++r.steps;
-    }
-    stepping += std::chrono::duration<double>(Clock::now() - t0).count();
-    r.error = std::max(r.error, std::abs(s.rigid[0].r.z() - c.value));
-  }
-  r.best_s = stepping;
-  return r;
-}
-
-// Adapts a generated model's namespace to a type the templates above take.
-#define MBRT_ADAPT(problem, ns)                                                 \
-  struct ns##_model {                                                           \
-    using State = mbrt::models::ns::State;                                      \
-    static constexpr double kStep = mbrt::models::ns::kStep;                    \
-    static constexpr const char* kScheme = mbrt::models::ns::kScheme;          \
-    static State initial_state() { return mbrt::models::ns::initial_state(); } \
-    static void step(State& s) { mbrt::models::ns::step(s); }                   \
-  };
+#define MBRT_ADAPT(name, ns) BENCH_MODEL(ns##_model, ns);
 MBRT_VARIANTS(MBRT_ADAPT)
+#undef MBRT_ADAPT
+
+using PeerRun = Measurement (*)(const timing::Problem&, const std::string&, double);
+
+void add_peer(std::vector<Run>& runs, const std::vector<std::string>& methods, PeerRun run) {
+  for (const timing::Problem& p : timing::problems())
+    for (const std::string& method : methods)
+      for (double h : timing::peer_steps(p)) runs.push_back([&p, method, h, run] { return run(p, method, h); });
+}
+
+std::vector<Run> all_runs() {
+  std::vector<Run> runs;
+#define MBRT_RUN(name, ns) runs.push_back([] { return timing::run_mbrt<ns##_model>(timing::problem(#name)); });
+  MBRT_VARIANTS(MBRT_RUN)
+#undef MBRT_RUN
+#ifdef MBRT_WITH_MUJOCO
+  add_peer(runs, timing::mujoco_methods(), timing::run_mujoco);
+#endif
+#ifdef MBRT_WITH_SIMBODY
+  add_peer(runs, timing::simbody_methods(), timing::run_simbody);
+#endif
+  return runs;
+}
+
+std::string ratio_text(const Measurement& m, const std::vector<Measurement>& all) {
+  const auto r = timing::ratio_to_mujoco(m, all);
+  if (!r) return "";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", *r);
+  return buf;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-  std::vector<Result> best;
-  for (int rep = 0; rep < repeats; ++rep) {
-    std::vector<Result> round;
-#define MBRT_RUN(problem, ns)                                                                   \
-  round.push_back(std::string(#problem) == "a01" ? run_a01<ns##_model>(#ns) : run_top<ns##_model>(#ns));
-    MBRT_VARIANTS(MBRT_RUN)
-#undef MBRT_RUN
-    if (best.empty()) best = round;
-    for (size_t i = 0; i < round.size(); ++i) best[i].best_s = std::min(best[i].best_s, round[i].best_s);
-    std::fprintf(stderr, "round %d of %d done\n", rep + 1, repeats);
+  const int rounds = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
+  const char* csv_path = argc > 2 ? argv[2] : "work_precision.csv";
+  const std::vector<Run> runs = all_runs();
+  std::vector<Measurement> best;
+  for (int round = 0; round < rounds; ++round) {
+    for (size_t i = 0; i < runs.size(); ++i) {
+      const Measurement m = runs[i]();
+      if (best.size() <= i) {
+        best.push_back(m);
+      } else if (m.seconds < best[i].seconds) {
+        best[i].seconds = m.seconds;
+      }
+    }
+    std::fprintf(stderr, "round %d of %d done (%zu runs)\n", round + 1, rounds, runs.size());
   }
-  std::printf("problem,scheme,h,steps,max_error,run_s,ns_per_step\n");
-  for (const Result& r : best) {
-    std::printf("%s,%s,%.6g,%ld,%.6g,%.6g,%.1f\n", r.problem.c_str(), r.scheme.c_str(), r.h, r.steps, r.error,
-                r.best_s, 1e9 * r.best_s / static_cast<double>(r.steps));
+  std::FILE* csv = std::fopen(csv_path, "w");
+  if (!csv) {
+    std::perror(csv_path);
+    return 1;
   }
+  std::fprintf(csv, "problem,engine,method,h,steps,max_error,run_s,ns_per_step,allocations_per_step,failed,time_ratio_to_mujoco\n");
+  std::printf("%-18s %-8s %-20s %10s %12s %12s %10s %8s %s\n", "problem", "engine", "method", "h", "max_error", "run_s",
+              "ns/step", "allocs", "time/MuJoCo at equal error");
+  for (const Measurement& m : best) {
+    const double steps = static_cast<double>(std::max(1L, m.steps));
+    const double ns = 1e9 * m.seconds / steps, allocs = static_cast<double>(m.allocations) / steps;
+    const std::string ratio = ratio_text(m, best);
+    std::fprintf(csv, "%s,%s,%s,%.6g,%ld,%.6g,%.6g,%.1f,%.3g,%d,%s\n", m.problem.c_str(), m.engine.c_str(),
+                 m.method.c_str(), m.h, m.steps, m.error, m.seconds, ns, allocs, m.failed ? 1 : 0, ratio.c_str());
+    std::printf("%-18s %-8s %-20s %10.4g %12.4g %12.4g %10.1f %8.3g %s\n", m.problem.c_str(), m.engine.c_str(),
+                m.method.c_str(), m.h, m.error, m.seconds, ns, allocs, ratio.c_str());
+  }
+  std::fclose(csv);
   return 0;
 }

@@ -21,8 +21,7 @@ Joints: 3N+1 revolute joints about z (ground-crank, crank-coupler,
 coupler-crank). Every window is a planar loop, so each closes with 3
 redundant rows (handled by the generated step's diagonal shift).
 """
-import argparse
-import sys
+import model_cli
 
 MASS = 1.0
 LENGTH = 1.0
@@ -85,15 +84,5 @@ def model(n, name):
     return "\n".join(out) + "\n"
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("n", type=int, help="number of four-bar windows (N >= 1)")
-    parser.add_argument("--name", help="model name (default a02_n_four_bar_N)")
-    args = parser.parse_args()
-    if args.n < 1:
-        parser.error("N must be at least 1")
-    sys.stdout.write(model(args.n, args.name or "a02_n_four_bar_%d" % args.n))
-
-
 if __name__ == "__main__":
-    main()
+    model_cli.run(__doc__, model, "a02_n_four_bar_%d", "number of four-bar windows")

@@ -1,0 +1,56 @@
+// One work-precision run of any engine: steps to each reference time, timing
+// and counting heap allocations of the stepping only, and keeps the largest
+// error of the observed point. An engine is a type with
+//   bool step()            one fixed step; false if the engine failed
+//   double time() const
+//   mbrt::Vec3 observed()  the problem's observed point, world coordinates
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "allocation_counter.hpp"
+#include "problems.hpp"
+
+namespace timing {
+
+struct Measurement {
+  std::string problem, engine, method;
+  double h = 0;
+  long steps = 0;
+  double error = 0;    // max over the reference samples
+  double seconds = 0;  // stepping only
+  long allocations = 0;
+  bool failed = false;
+};
+
+template <class Engine>
+Measurement measure(const Problem& p, Engine& engine, Measurement m) {
+  using Clock = std::chrono::steady_clock;
+  for (const Observation& o : p.reference) {
+    long allocations = 0;
+    const auto start = Clock::now();
+    {
+      AllocationCounter counter;
+      while (!m.failed && engine.time() < o.t - 0.5 * m.h) {
+        m.failed = !engine.step();
+        ++m.steps;
+      }
+      allocations = counter.count();
+    }
+    m.seconds += std::chrono::duration<double>(Clock::now() - start).count();
+    m.allocations += allocations;
+    if (m.failed) {  // the engine's state is not to be read
+      m.error = std::numeric_limits<double>::infinity();
+      break;
+    }
+    const double e = observation_error(o, engine.observed());
+    m.error = std::max(m.error, std::isfinite(e) ? e : std::numeric_limits<double>::infinity());
+  }
+  return m;
+}
+
+}  // namespace timing

@@ -1,0 +1,81 @@
+#include "mujoco_engine.hpp"
+
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+
+#include <mujoco/mujoco.h>
+
+#include "mujoco_models.hpp"
+
+namespace timing {
+namespace {
+
+mjModel* load(const std::string& mjcf) {
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* file = "model.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), file, static_cast<int>(mjcf.size())) != 0)
+    throw std::runtime_error("MuJoCo: cannot make a virtual file");
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file)], mjcf.data(), mjcf.size());
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(file, vfs.get(), error, sizeof error);
+  mj_deleteVFS(vfs.get());
+  if (!m) throw std::runtime_error(std::string("MuJoCo: ") + error);
+  return m;
+}
+
+class MujocoEngine {
+ public:
+  MujocoEngine(const Problem& p, mjtIntegrator integrator, double h) : model_(load(mujoco_mjcf(p))) {
+    model_->opt.timestep = h;
+    model_->opt.integrator = integrator;
+    data_ = mj_makeData(model_);
+    if (model_->nkey > 0) mj_resetDataKeyframe(model_, data_, 0);
+    body_ = mj_name2id(model_, mjOBJ_BODY, p.body.c_str());
+    if (body_ < 0) throw std::invalid_argument("MuJoCo model has no body " + p.body);
+    mj_kinematics(model_, data_);
+    for (int i = 0; i < 3; ++i) offset_[i] = p.point[i] - data_->xpos[3 * body_ + i];  // bodies start unrotated
+  }
+  ~MujocoEngine() {
+    mj_deleteData(data_);
+    mj_deleteModel(model_);
+  }
+  MujocoEngine(const MujocoEngine&) = delete;
+  MujocoEngine& operator=(const MujocoEngine&) = delete;
+
+  // MuJoCo resets the state when accelerations go bad: that is a failure.
+  bool step() {
+    mj_step(model_, data_);
+    return data_->warning[mjWARN_BADQACC].number == 0;
+  }
+  double time() const { return data_->time; }
+  mbrt::Vec3 observed() {
+    mj_kinematics(model_, data_);
+    const mjtNum* x = data_->xpos + 3 * body_;
+    const mjtNum* r = data_->xmat + 9 * body_;  // row-major body-to-world
+    mbrt::Vec3 out;
+    for (int i = 0; i < 3; ++i) out[i] = x[i] + r[3 * i] * offset_[0] + r[3 * i + 1] * offset_[1] + r[3 * i + 2] * offset_[2];
+    return out;
+  }
+
+ private:
+  mjModel* model_;
+  mjData* data_ = nullptr;
+  int body_ = -1;
+  mbrt::Vec3 offset_;
+};
+
+}  // namespace
+
+const std::vector<std::string>& mujoco_methods() {
+  static const std::vector<std::string> names{"euler", "rk4"};
+  return names;
+}
+
+Measurement run_mujoco(const Problem& p, const std::string& method, double h) {
+  MujocoEngine engine(p, method == "rk4" ? mjINT_RK4 : mjINT_EULER, h);
+  return measure(p, engine, {p.name, "mujoco", method, h});
+}
+
+}  // namespace timing

@@ -1,0 +1,85 @@
+#include "mujoco_models.hpp"
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace timing {
+namespace {
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+// A uniform 1 kg, 1 m rod along x or y of its body frame, starting at the
+// frame origin: m L^2/12 transverse, 1e-4 axial (as the mbrt models).
+std::string rod(char axis) {
+  const std::string t = num(1.0 / 12.0);
+  return axis == 'x' ? "<inertial pos='0.5 0 0' mass='1' diaginertia='1e-4 " + t + " " + t + "'/>"
+                     : "<inertial pos='0 0.5 0' mass='1' diaginertia='" + t + " 1e-4 " + t + "'/>";
+}
+
+const char* kHinge = "<joint type='hinge' axis='0 0 1'/>";
+
+std::string a01() {
+  // The bar is massless: the body is the bob, a point mass (MuJoCo needs a
+  // positive inertia; 1e-12 kg m^2 changes nothing at the compared digits).
+  return "<worldbody><body name='bob' pos='-1 0 0'><joint type='hinge' pos='1 0 0' axis='0 0 1'/>"
+         "<inertial pos='0 0 0' mass='1' diaginertia='1e-12 1e-12 1e-12'/></body></worldbody>";
+}
+
+std::string heavy_top() {
+  // Ball joint velocities are body-frame angular velocities.
+  return "<worldbody><body name='top'><joint type='ball'/>"
+         "<inertial pos='0 1 0' mass='15' diaginertia='0.234375 0.46875 0.234375'/></body></worldbody>"
+         "<keyframe><key qvel='0 150 -4.61538'/></keyframe>";
+}
+
+// Cranks pinned to the ground, each carrying the coupler to its right; the
+// coupler's far end is connected to the next crank's top. The constraint is
+// as stiff as MuJoCo allows (time constant clamped to 2 steps, impedance near 1).
+std::string n_four_bar(int n) {
+  std::string bodies, equality, qvel;
+  for (int i = 0; i <= n; ++i) {
+    bodies += "<body name='crank_" + std::to_string(i) + "' pos='" + std::to_string(i) + " 0 0'>" + kHinge + rod('y');
+    qvel += i == 0 ? "-1" : " -1";
+    if (i < n) {
+      bodies += "<body name='coupler_" + std::to_string(i) + "' pos='0 1 0'>" + kHinge + rod('x') + "</body>";
+      qvel += " 1";  // couplers translate: +1 relative to the crank
+      equality += "<connect body1='coupler_" + std::to_string(i) + "' body2='crank_" + std::to_string(i + 1) +
+                  "' anchor='1 0 0' solref='1e-6 1' solimp='0.9999 0.9999 0.001 0.5 2'/>";
+    }
+    bodies += "</body>";
+  }
+  return "<worldbody>" + bodies + "</worldbody><equality>" + equality + "</equality><keyframe><key qvel='" + qvel +
+         "'/></keyframe>";
+}
+
+std::string chain(int n) {
+  std::string open, close;
+  for (int i = 0; i < n; ++i) {
+    open += "<body name='link_" + std::to_string(i) + "' pos='" + (i == 0 ? "0" : "1") + " 0 0'>" + kHinge + rod('x');
+    close += "</body>";
+  }
+  return "<worldbody>" + open + close + "</worldbody>";
+}
+
+std::string mechanism(const Problem& p) {
+  switch (p.mechanism) {
+    case Mechanism::a01_pendulum: return a01();
+    case Mechanism::heavy_top: return heavy_top();
+    case Mechanism::n_four_bar: return n_four_bar(p.n);
+    case Mechanism::chain: return chain(p.n);
+  }
+  throw std::logic_error("unknown mechanism");
+}
+
+}  // namespace
+
+std::string mujoco_mjcf(const Problem& p) {
+  const std::string gravity = p.mechanism == Mechanism::heavy_top ? "0 0 -9.81" : "0 -9.81 0";
+  return "<mujoco model='" + p.name + "'><option gravity='" + gravity + "'/>" + mechanism(p) + "</mujoco>";
+}
+
+}  // namespace timing

@@ -1,0 +1,159 @@
+#include "simbody_engine.hpp"
+
+#include <map>
+#include <memory>
+#include <stdexcept>
+
+#include <Simbody.h>
+
+namespace timing {
+namespace {
+
+// Constraint tolerance: far below every compared error, so the projection is
+// never what limits Simbody's accuracy.
+constexpr double kConstraintTolerance = 1e-10;
+
+// A body of the given mass, centre of mass and central inertia diag(i).
+SimTK::Body::Rigid rigid_body(double mass, const SimTK::Vec3& com, const SimTK::Vec3& i) {
+  return SimTK::Body::Rigid(SimTK::MassProperties(mass, com, SimTK::Inertia(i).shiftFromMassCenter(com, mass)));
+}
+
+// A uniform 1 kg, 1 m rod starting at its body origin along x or y: m L^2/12
+// transverse, 1e-4 axial (as the mbrt models).
+SimTK::Body::Rigid rod(char axis) {
+  const double t = 1.0 / 12.0;
+  return axis == 'x' ? rigid_body(1, {0.5, 0, 0}, {1e-4, t, t}) : rigid_body(1, {0, 0.5, 0}, {t, 1e-4, t});
+}
+
+class Mechanism {
+ public:
+  explicit Mechanism(const Problem& p) : matter_(system_), forces_(system_) {
+    const double g = 9.81;
+    SimTK::Force::UniformGravity(forces_, matter_,
+                                 p.mechanism == timing::Mechanism::heavy_top ? SimTK::Vec3(0, 0, -g) : SimTK::Vec3(0, -g, 0));
+    switch (p.mechanism) {
+      case timing::Mechanism::a01_pendulum: build_a01(); break;
+      case timing::Mechanism::heavy_top: build_heavy_top(); break;
+      case timing::Mechanism::n_four_bar: build_n_four_bar(p.n); break;
+      case timing::Mechanism::chain: build_chain(p.n); break;
+    }
+    state_ = system_.realizeTopology();
+    system_.realize(state_, SimTK::Stage::Position);
+    for (const auto& [index, rate] : initial_rates_) matter_.getMobilizedBody(index).setUToFitAngularVelocity(state_, rate);
+    system_.realize(state_, SimTK::Stage::Velocity);
+  }
+  SimTK::MultibodySystem& system() { return system_; }
+  const SimTK::State& initial_state() const { return state_; }
+  const SimTK::MobilizedBody& body(const std::string& name) const {
+    const auto it = bodies_.find(name);
+    if (it == bodies_.end()) throw std::invalid_argument("Simbody mechanism has no body " + name);
+    return matter_.getMobilizedBody(it->second);
+  }
+
+ private:
+  SimTK::MobilizedBody::Pin pin(SimTK::MobilizedBody& parent, const SimTK::Vec3& at, const SimTK::Body& b,
+                                const std::string& name) {
+    SimTK::MobilizedBody::Pin m(parent, SimTK::Transform(at), b, SimTK::Transform());
+    bodies_[name] = m.getMobilizedBodyIndex();
+    return m;
+  }
+
+  void build_a01() {
+    // The bob is a point mass at the body origin, on a massless bar to the
+    // pivot (a zero inertia fails Simbody's checks by round-off; 1e-12 kg m^2
+    // changes nothing at the compared digits, as in MuJoCo).
+    SimTK::MobilizedBody::Pin bob(matter_.Ground(), SimTK::Transform(), rigid_body(1, {0, 0, 0}, {1e-12, 1e-12, 1e-12}),
+                                  SimTK::Transform(SimTK::Vec3(1, 0, 0)));
+    bodies_["bob"] = bob.getMobilizedBodyIndex();
+  }
+
+  void build_heavy_top() {
+    SimTK::MobilizedBody::Ball top(matter_.Ground(), SimTK::Transform(),
+                                   rigid_body(15, {0, 1, 0}, {0.234375, 0.46875, 0.234375}), SimTK::Transform());
+    bodies_["top"] = top.getMobilizedBodyIndex();
+    initial_rates_.push_back({top.getMobilizedBodyIndex(), SimTK::Vec3(0, 150, -4.61538)});
+  }
+
+  void build_n_four_bar(int n) {
+    std::vector<SimTK::MobilizedBody> cranks, couplers;
+    for (int i = 0; i <= n; ++i) {
+      cranks.push_back(pin(matter_.Ground(), {double(i), 0, 0}, rod('y'), "crank_" + std::to_string(i)));
+      initial_rates_.push_back({cranks.back().getMobilizedBodyIndex(), SimTK::Vec3(0, 0, -1)});
+    }
+    for (int i = 0; i < n; ++i) {
+      couplers.push_back(pin(cranks[i], {0, 1, 0}, rod('x'), "coupler_" + std::to_string(i)));
+      // Couplers translate: +1 rad/s relative to their crank.
+      initial_rates_.push_back({couplers.back().getMobilizedBodyIndex(), SimTK::Vec3(0, 0, 1)});
+      SimTK::Constraint::Ball(couplers[i], SimTK::Vec3(1, 0, 0), cranks[i + 1], SimTK::Vec3(0, 1, 0));
+    }
+  }
+
+  void build_chain(int n) {
+    SimTK::MobilizedBody parent = matter_.Ground();
+    for (int i = 0; i < n; ++i) parent = pin(parent, {i == 0 ? 0.0 : 1.0, 0, 0}, rod('x'), "link_" + std::to_string(i));
+  }
+
+  SimTK::MultibodySystem system_;
+  SimTK::SimbodyMatterSubsystem matter_;
+  SimTK::GeneralForceSubsystem forces_;
+  SimTK::State state_;
+  std::map<std::string, SimTK::MobilizedBodyIndex> bodies_;
+  std::vector<std::pair<SimTK::MobilizedBodyIndex, SimTK::Vec3>> initial_rates_;  // angular velocities relative to the parent
+};
+
+std::unique_ptr<SimTK::Integrator> integrator(const std::string& method, SimTK::MultibodySystem& system, double h) {
+  std::unique_ptr<SimTK::Integrator> out;
+  if (method == "rk_merson") {
+    out = std::make_unique<SimTK::RungeKuttaMersonIntegrator>(system);
+  } else {
+    out = std::make_unique<SimTK::SemiExplicitEulerIntegrator>(system, h);
+  }
+  out->setFixedStepSize(h);
+  out->setConstraintTolerance(kConstraintTolerance);
+  return out;
+}
+
+class SimbodyEngine {
+ public:
+  SimbodyEngine(const Problem& p, const std::string& method, double h)
+      : mechanism_(p), integrator_(integrator(method, mechanism_.system(), h)), body_(mechanism_.body(p.body)), h_(h) {
+    const SimTK::State& s = mechanism_.initial_state();
+    station_ = body_.findStationAtGroundPoint(s, SimTK::Vec3(p.point[0], p.point[1], p.point[2]));
+    integrator_->initialize(s);
+  }
+  // Simbody throws when a step fails (e.g. the projection does not converge).
+  bool step() {
+    try {
+      integrator_->stepTo(integrator_->getTime() + h_);
+      return true;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
+  double time() const { return integrator_->getTime(); }
+  mbrt::Vec3 observed() const {
+    const SimTK::Vec3 x = body_.findStationLocationInGround(integrator_->getState(), station_);
+    return {x[0], x[1], x[2]};
+  }
+
+ private:
+  Mechanism mechanism_;
+  std::unique_ptr<SimTK::Integrator> integrator_;
+  const SimTK::MobilizedBody& body_;
+  SimTK::Vec3 station_;
+  double h_;
+};
+
+}  // namespace
+
+const std::vector<std::string>& simbody_methods() {
+  static const std::vector<std::string> names{"rk_merson", "semi_explicit_euler"};
+  return names;
+}
+
+Measurement run_simbody(const Problem& p, const std::string& method, double h) {
+  SimbodyEngine engine(p, method, h);
+  return measure(p, engine, {p.name, "simbody", method, h});
+}
+
+}  // namespace timing

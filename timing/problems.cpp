@@ -1,0 +1,63 @@
+#include "problems.hpp"
+
+#include <stdexcept>
+
+#include "reference_solutions.hpp"
+
+namespace timing {
+namespace {
+
+const mbrt::Vec3 kPlane(1, 1, 0);
+const mbrt::Vec3 kHeight(0, 0, 1);
+
+// A reference sampled every dt from t = dt on (t = 0 is the initial state).
+std::vector<Observation> sampled(const std::vector<mbrt::Vec3>& values, double dt, const mbrt::Vec3& mask) {
+  std::vector<Observation> out;
+  for (size_t k = 1; k < values.size(); ++k) out.push_back({dt * static_cast<double>(k), values[k], mask});
+  return out;
+}
+
+std::vector<Observation> heavy_top_height() {
+  std::vector<Observation> out;
+  for (const reference::TimedValue& c : reference::kHeavyTopHeight) out.push_back({c.t, {0, 0, c.value}, kHeight});
+  return out;
+}
+
+std::vector<Problem> make_problems() {
+  // References: minimal-coordinate ODEs by RK4 at a step far below any
+  // compared one, or the closed-form Lagrange top.
+  return {
+      {"a01_pendulum", Mechanism::a01_pendulum, 1, "bob", {-1, 0, 0}, 2e-3,
+       sampled(reference::a01_bob_positions(20.0, 0.5, 1e-5), 0.5, kPlane)},
+      {"heavy_top", Mechanism::heavy_top, 1, "top", {0, 1, 0}, 4e-4, heavy_top_height()},
+      {"four_bar", Mechanism::n_four_bar, 1, "crank_0", {0, 1, 0}, 2e-3,
+       sampled(reference::a02_b0_positions(1, 5.0, 0.05, 1e-5), 0.05, kPlane)},
+      {"a02_n_four_bar_4", Mechanism::n_four_bar, 4, "crank_0", {0, 1, 0}, 2e-3,
+       sampled(reference::a02_b0_positions(4, 5.0, 0.05, 1e-5), 0.05, kPlane)},
+      {"arm_3", Mechanism::chain, 3, "link_2", {3, 0, 0}, 1e-3,
+       sampled(reference::chain_tip_positions(3, 2.0, 0.05, 1e-5), 0.05, kPlane)},
+      {"chain_10", Mechanism::chain, 10, "link_9", {10, 0, 0}, 5e-4,
+       sampled(reference::chain_tip_positions(10, 2.0, 0.05, 1e-5), 0.05, kPlane)},
+  };
+}
+
+}  // namespace
+
+const std::vector<Problem>& problems() {
+  static const std::vector<Problem> all = make_problems();
+  return all;
+}
+
+const Problem& problem(const std::string& name) {
+  for (const Problem& p : problems())
+    if (p.name == name) return p;
+  throw std::invalid_argument("no work-precision problem named " + name);
+}
+
+std::vector<double> peer_steps(const Problem& p) {
+  std::vector<double> out;
+  for (double f : {16.0, 8.0, 4.0, 2.0, 1.0, 0.5, 0.25}) out.push_back(f * p.base_step);
+  return out;
+}
+
+}  // namespace timing

@@ -1,0 +1,236 @@
+#!/usr/bin/env python3
+"""Write docs/results.md from the measured files in timing/results/.
+
+Usage: tools/results_page.py   (from anywhere; rewrites docs/results.md)
+
+Every number on the page is read from a file a timing command wrote; the
+page names that command and the machine (the *.machine.txt beside each
+result). Sections whose files are missing say so.
+"""
+import csv
+import glob
+import os
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RESULTS = os.path.join(ROOT, "timing", "results")
+PAGE = os.path.join(ROOT, "docs", "results.md")
+LINK = "../timing/results/"
+
+
+def rows(name):
+    path = os.path.join(RESULTS, name)
+    if not os.path.exists(path):
+        return None
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def machine(name):
+    path = os.path.join(RESULTS, name + ".machine.txt")
+    if not os.path.exists(path):
+        return ["(no machine file)"]
+    with open(path) as f:
+        return [line.rstrip("\n") for line in f if line.strip()]
+
+
+def provenance(out, name):
+    lines = machine(name)
+    command = [l for l in lines if l.startswith("command: ")]
+    if command:
+        paragraph(out, "Command: `%s`" % command[0][len("command: "):])
+    for line in lines:
+        if not line.startswith("command: "):
+            out.append("- " + line)
+    out.append("")
+
+
+def paragraph(out, text):
+    out.append(text)
+    out.append("")
+
+
+def measured(out, name, command):
+    """The rows of NAME.csv, its command and machine written to out; None (and a note) if not measured."""
+    data = rows(name + ".csv")
+    if data is None:
+        paragraph(out, "Not measured yet (`%s`)." % command)
+        return None
+    provenance(out, name)
+    return data
+
+
+def table(out, header, body):
+    out.append("| " + " | ".join(header) + " |")
+    out.append("|" + "---|" * len(header))
+    for r in body:
+        out.append("| " + " | ".join(r) + " |")
+    out.append("")
+
+
+def g(x, digits=3):
+    try:
+        return "%.*g" % (digits, float(x))
+    except ValueError:
+        return x
+
+
+def image(out, name, alt):
+    if os.path.exists(os.path.join(RESULTS, name)):
+        paragraph(out, "![%s](%s%s)" % (alt, LINK, name))
+
+
+def work_precision(out):
+    paragraph(out, "## Peers: work-precision against MuJoCo and Simbody")
+    data = measured(out, "work_precision", "timing/work_precision")
+    if data is None:
+        return
+    paragraph(out,
+        "Every mbrt scheme at 4 step sizes and every peer integrator at 7, run alternately in one "
+        "process (the fastest of the rounds kept). Error: the largest distance of the observed point "
+        "from an independent reference (minimal-coordinate equations by RK4 at 1e-5 s, the closed-form "
+        "Lagrange top), see timing/problems.cpp. Run time: stepping only. The ratio is the run's time "
+        "over the time of the faster MuJoCo integrator at the same error (log-log interpolation of "
+        "MuJoCo's curves); below 1 mbrt is faster. Runs whose error lies outside MuJoCo's range have "
+        "no ratio. Full table: [work_precision.txt](%swork_precision.txt)." % LINK)
+    paragraph(out,
+        "Builds: mbrt's steps as `mbrt sim` compiles them (-O3, AVX2 and FMA where the CPU has them); "
+        "MuJoCo 2.2.2 and Simbody 3.7 are Debian's libraries. Models: the same masses, inertias and "
+        "initial states in each engine (timing/peers/); MuJoCo closes loops with `connect` equality "
+        "constraints as stiff as it allows (time constant clamped to two steps, impedance 0.9999), "
+        "Simbody with ball constraints projected to a 1e-10 tolerance after each step. Allocations are "
+        "counted by a malloc interposer over the stepping only.")
+    header = ["problem", "engine", "method", "error range", "ns per step", "allocations per step",
+              "time ratio to MuJoCo at equal error"]
+    body = []
+    problems = []
+    for r in data:
+        if r["problem"] not in problems:
+            problems.append(r["problem"])
+    for p in problems:
+        curves = []
+        for r in data:
+            if r["problem"] == p and (r["engine"], r["method"]) not in curves:
+                curves.append((r["engine"], r["method"]))
+        for engine, method in curves:
+            runs = [r for r in data if r["problem"] == p and r["engine"] == engine and r["method"] == method]
+            good = [r for r in runs if r["failed"] == "0"]
+            failed = len(runs) - len(good)
+            errors = sorted(float(r["max_error"]) for r in good)
+            ns = sorted(float(r["ns_per_step"]) for r in good)
+            allocs = sorted(float(r["allocations_per_step"]) for r in runs)
+            ratios = sorted(float(r["time_ratio_to_mujoco"]) for r in good if r["time_ratio_to_mujoco"])
+            body.append([
+                p, engine, method,
+                ("%s to %s" % (g(errors[0], 2), g(errors[-1], 2)) if errors else "-") +
+                (" (%d failed)" % failed if failed else ""),
+                "%s to %s" % (g(ns[0]), g(ns[-1])) if ns else "-",
+                g(allocs[-1]) if allocs[0] == allocs[-1] else "%s to %s" % (g(allocs[0]), g(allocs[-1])),
+                ("%s to %s" % (g(ratios[0]), g(ratios[-1])) if ratios else "-"),
+            ])
+    table(out, header, body)
+    for p in problems:
+        image(out, "work_precision_%s.png" % p, p + " work-precision")
+
+
+def wcet(out):
+    paragraph(out, "## Worst-case timing")
+    files = sorted(f for f in glob.glob(os.path.join(RESULTS, "wcet_*.csv"))
+                   if not f.endswith("_instructions.csv") and "_hist_" not in f)
+    if not files:
+        paragraph(out, "Not measured yet (`timing/wcet MODEL.yaml`).")
+        return
+    paragraph(out,
+        "Per-step times of `step()` (steady clock around each call; `timer` is the cost of reading it), "
+        "warm, with the caches evicted before every step (64 MB written), and warm under `stress-ng` "
+        "on every core; the instructions of 200 sampled steps counted by callgrind, each step alone. "
+        "The process runs at normal priority on a shared virtual machine without isolated cores, so "
+        "the largest times include preemption by other processes; the instruction count is the figure "
+        "that does not depend on the machine.")
+    for f in files:
+        tag = os.path.basename(f)[:-4]
+        paragraph(out, "### %s" % tag[len("wcet_"):])
+        provenance(out, tag)
+        data = rows(tag + ".csv")
+        table(out, ["mode", "steps", "failed", "timer ns", "min ns", "median ns", "p99 ns", "p99.99 ns",
+                    "max ns", "max / median", "p99.99 / median"],
+              [[r["mode"], r["steps"], r["failed"], r["timer_ns"], r["min_ns"], r["median_ns"], r["p99_ns"],
+                r["p99_99_ns"], r["max_ns"], r["max_over_median"], r["p99_99_over_median"]] for r in data])
+        counts = rows(tag + "_instructions.csv")
+        if counts:
+            c = counts[0]
+            paragraph(out, "Instructions per step (callgrind): %s sampled steps, min %s, max %s, %s distinct value%s." % (
+                c["sampled_steps"], c["min_instructions"], c["max_instructions"], c["distinct_counts"],
+                "" if c["distinct_counts"] == "1" else "s"))
+        image(out, tag + "_hist.png", tag + " histogram")
+
+
+def stability(out):
+    paragraph(out, "## Stability")
+    paragraph(out, "### Long runs")
+    data = measured(out, "stability_long_runs", "timing/stability")
+    if data is not None:
+        paragraph(out,
+            "Drifts are computed by timing/stability.cpp from the body states and the model files' "
+            "inertias: energy |E - E0|, angular momentum |L - L0| (heavy top: vertical component about the "
+            "fixed point; tumbling body: the world vector), largest | |p| - 1 |, largest position "
+            "violation; flips: sign changes of the body-y rate, sampled 1000 times (a lower bound).")
+        table(out, ["model", "scheme", "h", "steps", "t end (s)", "failed steps", "energy drift (J)",
+                    "momentum drift", "| |p| - 1 |", "position violation (m)", "flips", "ns per step"],
+              [[r["model"], r["scheme"], r["h"], r["steps"], g(r["t_end"]), r["failed_steps"],
+                r["max_energy_drift_J"], r["max_momentum_drift"], r["max_quaternion_norm_error"],
+                r["max_position_violation"], r["intermediate_axis_flips"], r["ns_per_step"]] for r in data])
+        for m in sorted({r["model"] for r in data}):
+            image(out, "stability_%s.png" % m, m + " drift")
+    paragraph(out, "### Largest stable step")
+    data = measured(out, "stable_step", "timing/stable_step")
+    if data is not None:
+        paragraph(out,
+            "Stable: every step `ok`, |E(T) - E(0)| <= 1% of |E(0)| and position violation <= 1e-3 m "
+            "(timing/stable_step doubles the step until a run fails, then bisects twice in log h).")
+        table(out, ["model", "scheme", "largest stable h", "first unstable h", "energy drift at it (J)",
+                    "violation at it (m)"],
+              [[r["model"], r["scheme"], r["largest_stable_h"], r["first_unstable_h"],
+                r["energy_drift_at_stable_J"], r["violation_at_stable_m"]] for r in data])
+    paragraph(out, "### Cost against size")
+    data = measured(out, "chain_growth", "timing/chain_growth")
+    if data is not None:
+        table(out, ["links", "scheme", "constraint rows", "instructions per step", "ns per step"],
+              [[r["links"], r["scheme"], r["constraint_rows"], r["instructions_per_step"], g(r["ns_per_step"])]
+               for r in data])
+        image(out, "chain_growth.png", "cost against chain length")
+
+
+def bad_inputs(out):
+    paragraph(out, "## Bad inputs")
+    paragraph(out, "The model-file parser is fuzzed by libFuzzer with AddressSanitizer (fuzz/README.md): 60 s in "
+               "every test run (ctest `fuzz_model_parser`), longer with `fuzz/run SECONDS`.")
+    path = os.path.join(RESULTS, "fuzz_model_parser.txt")
+    if os.path.exists(path):
+        provenance(out, "fuzz_model_parser")
+        with open(path) as f:
+            stats = [l.strip() for l in f if l.startswith("stat::") or "Done " in l]
+        if stats:
+            paragraph(out, "Last long run: " + "; ".join(stats) + ".")
+    found = sorted(os.path.basename(p) for p in glob.glob(os.path.join(ROOT, "tests", "fuzz_regressions", "*.yaml")))
+    out.append("Inputs that crashed the parser, now regression tests (`test_fuzz_regressions`): %s." % (
+        ", ".join("`%s`" % f for f in found) if found else "none"))
+    out.append("")
+    paragraph(out, "Runtime bad inputs (a NaN or absurd value in the state or an input, a diverging step) return "
+               "a status and leave the last good state: tests/test_bad_numbers.cpp.")
+
+
+def main():
+    out = ["# Results", "",
+           "Generated by `tools/results_page.py` from the files in [timing/results/](%s); do not edit. "
+           "Each section names the command that produced its files and the machine it ran on. "
+           "The machine is shared and noisy: compare times as ratios within one run." % LINK, ""]
+    work_precision(out)
+    wcet(out)
+    stability(out)
+    bad_inputs(out)
+    with open(PAGE, "w") as f:
+        f.write("\n".join(out).rstrip("\n") + "\n")
+
+
+if __name__ == "__main__":
+    main()
