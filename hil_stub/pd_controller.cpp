@@ -275,15 +275,17 @@ class CanLink final : public Link {
  public:
   explicit CanLink(const LinkOptions& o) : bus_(open_can_bus(o.can_bus)) {}
 
-  // A state is whole when all its output frames follow its header frame.
+  // Like LCM's: waits up to wait_ms for the first frames, takes those
+  // waiting, returns. A state is whole when all its output frames follow
+  // its header frame.
   void receive(Controller& c, int wait_ms) override {
     const std::int64_t until = monotonic_ns() + wait_ms * 1000000ll;
-    do {
-      can_frame frames[64];
-      const int n = bus_->receive(frames, 64);
-      for (int k = 0; k < n; ++k) take(c, frames[k]);
-      if (n == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
-    } while (monotonic_ns() < until);
+    can_frame frames[64];
+    int n = 0;
+    while ((n = bus_->receive(frames, 64)) == 0 && monotonic_ns() < until) {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+    for (int k = 0; k < n; ++k) take(c, frames[k]);
   }
 
   std::vector<unsigned char> encode(const model::Inputs& u, long seq, const Controller& c) override {
