@@ -3,7 +3,7 @@
 // step: outputs, packing and encoding the state message, decoding and
 // unpacking a command, the command gate and the timing histogram; over
 // CAN, packing the state frames, the UDP wire format both ways, the candump
-// line, unpacking and assembling command frames.
+// line and log, unpacking and assembling command frames.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -101,6 +101,7 @@ TEST_CASE("the HIL cycle over CAN allocates nothing") {
   m::can::CommandFrames command_frames;
   std::uint8_t datagram[mbrt::rt::kCanUdpMaxDatagram];
   char line[mbrt::rt::kCandumpLineSize];
+  mbrt::rt::CandumpLog log("/dev/null", "udp0");
   long applied = 0, malformed = 0, seen = 0;
   {
     AllocationCounter counter;
@@ -114,6 +115,7 @@ TEST_CASE("the HIL cycle over CAN allocates nothing") {
         const std::size_t n = mbrt::rt::encode_can_udp(sent, 1.0, datagram);
         if (!mbrt::rt::decode_can_udp(datagram, n, f)) ++malformed;
         mbrt::rt::format_candump_line(f, 1.5, "udp0", line);
+        log.write(f, 1.5);
         mbrt::can::CommandSignal c;
         if (m::can::unpack_command(f, c) != mbrt::can::FrameCheck::ok) ++malformed;
         else if (assembler.add(c)) {

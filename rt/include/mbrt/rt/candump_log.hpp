@@ -1,8 +1,9 @@
 // Writes CAN frames as candump log lines, `(SECONDS.MICROS) IFACE ID#DATA`
 // (can-utils `candump -l`, read by python-can's CanutilsLogReader). The
 // file is opened at start-up (throws there); write() formats into a fixed
-// buffer and goes to a stdio stream opened with its own fixed buffer, so the
-// loop allocates nothing.
+// buffer and goes to a stdio stream with its own fixed buffer, unlocked (only
+// the loop writes), so the loop allocates nothing and takes no lock; a full
+// buffer costs one write(2).
 #pragma once
 
 #include <cstdio>
