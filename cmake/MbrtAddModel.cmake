@@ -8,7 +8,8 @@
 # several variants of one model into one program) and call
 # mbrt::models::<name>::step(). With LCM (models with inputs and outputs),
 # lcm-gen also runs on the model's message types and "<name>_lcm.hpp" packs
-# Outputs and Inputs into them; the target then links liblcm. GEN_OPTIONS
+# Outputs and Inputs into them ("<name>_can.hpp" packs them into CAN frames as
+# "<name>.dbc" describes); the target then links liblcm. GEN_OPTIONS
 # passes further `mbrt gen` options (e.g. --ali3p-projection cuadrado).
 function(mbrt_add_model target)
   cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
@@ -52,7 +53,8 @@ function(mbrt_add_model target)
   if(ARG_LCM)
     find_program(LCM_GEN lcm-gen REQUIRED)
     find_library(LCM_LIBRARY lcm REQUIRED)
-    list(APPEND outputs "${dir}/${name}_lcm.hpp" "${dir}/${name}_lcm/state_t.hpp" "${dir}/${name}_lcm/command_t.hpp")
+    list(APPEND outputs "${dir}/${name}_lcm.hpp" "${dir}/${name}_lcm/state_t.hpp" "${dir}/${name}_lcm/command_t.hpp"
+      "${dir}/${name}_can.hpp" "${dir}/${name}.dbc")
     set(lcm_gen COMMAND ${LCM_GEN} -x --cpp-hpath "${dir}" "${dir}/${name}.lcm")
   endif()
   add_custom_command(

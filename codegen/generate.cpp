@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "emit_can.hpp"
 #include "emit_lcm.hpp"
 #include "initial_conditions.hpp"
 
@@ -74,7 +75,10 @@ Generated generate(const std::string& model_path, const GenerateOptions& options
   if (options.project_initial) project_initial_state(g.model, g.analysis);
   check_initial_state(g.model, g.analysis);
   g.code = emit_cpp(g.model, g.analysis);
-  if (!g.model.inputs.empty() && !g.model.outputs.empty()) g.code.interface_files = emit_lcm(g.model);
+  if (!g.model.inputs.empty() && !g.model.outputs.empty()) {
+    g.code.interface_files = emit_lcm(g.model);
+    for (GeneratedFile& f : emit_can(g.model)) g.code.interface_files.push_back(std::move(f));
+  }
   return g;
 }
 

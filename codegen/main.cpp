@@ -16,20 +16,22 @@ constexpr const char* kUsage = R"(usage:
   mbrt sim MODEL.yaml [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
                       [--ali3p-projection P] [--ali3p-integrator I]
                       [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--verbose]
-  mbrt hil MODEL.yaml [generation options] --lcm URL [--rate HZ] [--duration S] [--report F.json]
-                      [--state-channel C] [--command-channel C] [--command-timeout S]
-                      [--max-command-age S] [--publish-every N] [--fifo PRIORITY] [--cpu N]
-  mbrt stub MODEL.yaml [generation options] --lcm URL [--rate HZ] [--duration S] [--report F.json]
+  mbrt hil MODEL.yaml [generation options] (--lcm URL | --can BUS [--can-log F])
+                      [--rate HZ] [--duration S] [--report F.json] [--state-channel C] [--command-channel C]
+                      [--command-timeout S] [--max-command-age S] [--publish-every N] [--fifo PRIORITY] [--cpu N]
+  mbrt stub MODEL.yaml [generation options] (--lcm URL | --can BUS) [--rate HZ] [--duration S] [--report F.json]
                       [--kp K] [--kd K] [--amplitude A] [--frequency F] [--settle S]
                       [--delay-us D] [--jitter-us J] [--seed N] [--crash-after S]
                       [--drop P] [--duplicate P] [--reorder P] [--garbage P] [--nan P] [--out-of-range P]
 
 gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
-outputs, DIR/<name>.lcm and DIR/<name>_lcm.hpp). sim generates, compiles (cached
-by content hash under $MBRT_CACHE_DIR or ~/.cache/mbrt) and runs the model; its
-last line on stdout is a JSON summary. hil runs the model in a real-time loop
-that publishes its outputs and takes commands over LCM; stub runs a PD
-controller for it; both print a JSON report. See docs/hil.md.
+outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp).
+sim generates, compiles (cached by content hash under $MBRT_CACHE_DIR or
+~/.cache/mbrt) and runs the model; its last line on stdout is a JSON summary.
+hil runs the model in a real-time loop that publishes its outputs and takes
+commands over LCM or a CAN bus (BUS: udp://GROUP:PORT or a SocketCAN interface
+such as vcan0); stub runs a PD controller for it; both print a JSON report.
+See docs/hil.md.
 )";
 
 struct UsageError : std::runtime_error {

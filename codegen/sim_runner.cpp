@@ -155,7 +155,8 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
     run_or_throw(std::string(toolchain::kLcmGen) + " -x --cpp-hpath " + quote(tmp.string()) + " " +
                      quote((tmp / (g.model.name + ".lcm")).string()),
                  "lcm-gen", tmp / "lcm-gen.log", options.verbose);
-    cmd += " -DMBRT_MODEL_LCM_HEADER='\"" + g.model.name + "_lcm.hpp\"'";
+    cmd += " -DMBRT_MODEL_LCM_HEADER='\"" + g.model.name + "_lcm.hpp\"' -DMBRT_MODEL_CAN_HEADER='\"" + g.model.name +
+           "_can.hpp\"'";
   } else {
     cmd += " -DMBRT_MODEL_HEADER='\"" + g.code.header_name + "\"'";
   }

@@ -1,8 +1,10 @@
 // A simulated controller in its own process: a PD joint controller that
-// reads the model's state over LCM and answers with commands at its own
-// period, with a configurable compute delay, jitter and injected faults.
-// Compiled by `mbrt stub` with the model's generated LCM types, with
-//   -DMBRT_MODEL_LCM_HEADER="<name>_lcm.hpp" -DMBRT_MODEL_NAMESPACE=mbrt::models::<name>
+// reads the model's state over LCM or a CAN bus and answers with commands at
+// its own period, with a configurable compute delay, jitter and injected
+// faults. Compiled by `mbrt stub` with the model's generated LCM types and
+// CAN layout, with
+//   -DMBRT_MODEL_LCM_HEADER="<name>_lcm.hpp" -DMBRT_MODEL_CAN_HEADER="<name>_can.hpp"
+//   -DMBRT_MODEL_NAMESPACE=mbrt::models::<name>
 //
 // Every joint_torque or joint_force input whose joint has joint_position and
 // joint_velocity outputs is driven to follow q_ref(t) = A sin(2 pi f t), t
@@ -18,16 +20,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include <mbrt/rt/can_bus.hpp>
 #include <mbrt/rt/lcm_bridge.hpp>
 #include <mbrt/rt/periodic_clock.hpp>
 #include <mbrt/rt/program_options.hpp>
 
+#include MBRT_MODEL_CAN_HEADER
 #include MBRT_MODEL_LCM_HEADER
 
 namespace model = MBRT_MODEL_NAMESPACE;
@@ -35,7 +40,7 @@ using namespace mbrt::rt;
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: pd_controller --lcm URL [--rate HZ] [--duration S] [--report F.json]
+constexpr const char* kUsage = R"(usage: pd_controller (--lcm URL | --can BUS) [--rate HZ] [--duration S] [--report F.json]
            [--kp K[,K...]] [--kd K[,K...]] [--amplitude A] [--frequency F] [--settle S]
            [--delay-us D] [--jitter-us J] [--seed N] [--crash-after S]
            [--drop P] [--duplicate P] [--reorder P] [--garbage P] [--nan P] [--out-of-range P]
@@ -148,7 +153,11 @@ struct FaultCounts {
 struct Controller {
   Options opt;
   std::vector<JointLoop> loops = joint_loops();
-  model::StateMessage state{};
+  // The latest state: its outputs and time, and what a command answering it quotes.
+  model::Outputs y{};
+  double t = 0.0;
+  std::int64_t state_utime = 0;     // LCM
+  std::uint16_t state_seq = 0;      // CAN
   bool have_state = false;
   double first_state_t = 0.0;
   long states_received = 0;
@@ -157,7 +166,7 @@ struct Controller {
   long error_samples = 0;
   FaultCounts faults;
   std::mt19937_64 random;
-  std::vector<unsigned char> held;  // a command kept back to be sent after the next one
+  std::vector<unsigned char> held;  // a command kept back to be sent after the next one (encoded)
 
   explicit Controller(const Options& o) : opt(o), random(o.seed) {
     for (const std::vector<double>* g : {&opt.kp, &opt.kd}) {
@@ -183,41 +192,156 @@ struct Controller {
     }
   }
 
+  void on_state(double state_t) {
+    t = state_t;
+    if (!have_state) first_state_t = t;
+    have_state = true;
+    ++states_received;
+    track(y, t);
+  }
+
   model::Inputs command() const {
     model::Inputs u;
     for (int i = 0; i < model::kInputs; ++i) u[static_cast<std::size_t>(i)] = model::kInputInfo[static_cast<std::size_t>(i)].safe;
-    model::Outputs y;
-    model::unpack_outputs(state, y);
     for (std::size_t k = 0; k < loops.size(); ++k) {
       const JointLoop& j = loops[k];
       const mbrt::InputInfo& in = model::kInputInfo[static_cast<std::size_t>(j.input)];
-      const double pd = gain(opt.kp, k) * (q_ref(state.t) - y[static_cast<std::size_t>(j.position)]) +
-                        gain(opt.kd, k) * (qd_ref(state.t) - y[static_cast<std::size_t>(j.velocity)]);
+      const double pd = gain(opt.kp, k) * (q_ref(t) - y[static_cast<std::size_t>(j.position)]) +
+                        gain(opt.kd, k) * (qd_ref(t) - y[static_cast<std::size_t>(j.velocity)]);
       u[static_cast<std::size_t>(j.input)] = std::clamp(pd, in.min, in.max);
     }
     return u;
   }
 };
 
-void on_state(const void* data, int size, void* context) {
-  Controller& c = *static_cast<Controller*>(context);
-  if (!model::decode_exactly(data, size, c.state)) return;
-  if (!c.have_state) c.first_state_t = c.state.t;
-  c.have_state = true;
-  ++c.states_received;
-  model::Outputs y;
-  model::unpack_outputs(c.state, y);
-  c.track(y, c.state.t);
-}
+// The controller's link: LCM messages or CAN frames. A command travels as
+// one unit of bytes (a message, or its frames back to back), so the faults
+// act on whole commands alike.
+class Link {
+ public:
+  virtual ~Link() = default;
+  // Takes the states waiting (up to wait_ms for the first) into c.
+  virtual void receive(Controller& c, int wait_ms) = 0;
+  virtual std::vector<unsigned char> encode(const model::Inputs& u, long seq, const Controller& c) = 0;
+  // Something that looks like a command but must be refused as malformed, once.
+  virtual std::vector<unsigned char> garbage(std::vector<unsigned char> command, std::mt19937_64& random) = 0;
+  virtual void send(const std::vector<unsigned char>& command) = 0;
+};
 
-std::vector<unsigned char> encode(const model::CommandMessage& m) {
-  std::vector<unsigned char> bytes(static_cast<std::size_t>(m.getEncodedSize()));
-  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
-}
+class LcmLink final : public Link {
+ public:
+  explicit LcmLink(const LinkOptions& o) : bridge_(o.lcm_url, o.state_channel), channel_(o.command_channel) {}
+
+  void receive(Controller& c, int wait_ms) override { bridge_.receive(&on_state, &c, 64, wait_ms); }
+
+  std::vector<unsigned char> encode(const model::Inputs& u, long seq, const Controller& c) override {
+    model::CommandMessage m{};
+    model::pack_inputs(u, m);
+    m.seq = seq;
+    m.state_utime = c.state_utime;
+    m.utime = realtime_us();
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(m.getEncodedSize()));
+    m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    return bytes;
+  }
+
+  // Random bytes of random length.
+  std::vector<unsigned char> garbage(std::vector<unsigned char> bytes, std::mt19937_64& random) override {
+    std::uniform_int_distribution<int> byte(0, 255);
+    for (unsigned char& b : bytes) b = static_cast<unsigned char>(byte(random));
+    bytes.resize(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, static_cast<int>(bytes.size()))(random)));
+    return bytes;
+  }
+
+  void send(const std::vector<unsigned char>& bytes) override {
+    bridge_.publish(channel_.c_str(), bytes.data(), static_cast<int>(bytes.size()));
+  }
+
+ private:
+  static void on_state(const void* data, int size, void* context) {
+    Controller& c = *static_cast<Controller*>(context);
+    model::StateMessage m{};
+    if (!model::decode_exactly(data, size, m)) return;
+    model::unpack_outputs(m, c.y);
+    c.state_utime = m.utime;
+    c.on_state(m.t);
+  }
+
+  LcmBridge bridge_;
+  std::string channel_;
+};
+
+class CanLink final : public Link {
+ public:
+  explicit CanLink(const LinkOptions& o) : bus_(open_can_bus(o.can_bus)) {}
+
+  // Like LCM's: waits up to wait_ms for the first frames, takes those
+  // waiting, returns. A state is whole when all its output frames follow
+  // its header frame.
+  void receive(Controller& c, int wait_ms) override {
+    const std::int64_t until = monotonic_ns() + wait_ms * 1000000ll;
+    can_frame frames[64];
+    int n = 0;
+    while ((n = bus_->receive(frames, 64)) == 0 && monotonic_ns() < until) {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+    for (int k = 0; k < n; ++k) take(c, frames[k]);
+  }
+
+  std::vector<unsigned char> encode(const model::Inputs& u, long seq, const Controller& c) override {
+    model::can::CommandFrames frames;
+    model::can::pack_command(static_cast<std::uint16_t>(seq), c.state_seq, u, frames);
+    std::vector<unsigned char> bytes(sizeof frames);
+    std::memcpy(bytes.data(), frames.data(), sizeof frames);
+    return bytes;
+  }
+
+  // The first frame alone, cut to a wrong length (0 to 7 bytes).
+  std::vector<unsigned char> garbage(std::vector<unsigned char> bytes, std::mt19937_64& random) override {
+    can_frame f;
+    std::memcpy(&f, bytes.data(), sizeof f);
+    f.len = static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, 7)(random));
+    bytes.resize(sizeof f);
+    std::memcpy(bytes.data(), &f, sizeof f);
+    return bytes;
+  }
+
+  void send(const std::vector<unsigned char>& bytes) override {
+    for (std::size_t at = 0; at + sizeof(can_frame) <= bytes.size(); at += sizeof(can_frame)) {
+      can_frame f;
+      std::memcpy(&f, bytes.data() + at, sizeof f);
+      bus_->send(f);
+    }
+  }
+
+ private:
+  void take(Controller& c, const can_frame& f) {
+    mbrt::can::StateHeader h;
+    if (model::can::unpack_state(f, pending_, h) != mbrt::can::FrameCheck::ok) return;
+    const int index = static_cast<int>((f.can_id & CAN_SFF_MASK) - model::can::kStateId);
+    if (index == 0) {
+      header_ = h;
+      have_ = 1;
+    } else if (have_ == index) {
+      ++have_;  // frames arrive in order on one bus
+    } else {
+      have_ = 0;  // a frame was lost: wait for the next header
+    }
+    if (have_ != model::can::kStateFrames) return;
+    have_ = 0;
+    c.y = pending_;
+    c.state_seq = header_.seq;
+    c.on_state(header_.t);
+  }
+
+  std::unique_ptr<CanBus> bus_;
+  model::Outputs pending_{};
+  mbrt::can::StateHeader header_;
+  int have_ = 0;  // frames of the current state received, header first
+};
 
 // Builds the next command and sends it, or the fault that replaces it.
-void send_command(Controller& c, LcmBridge& bridge, long seq) {
+void send_command(Controller& c, Link& link, long seq) {
   model::Inputs u = c.command();
   if (c.chance(c.opt.faults.nan)) {
     u[0] = std::nan("");
@@ -226,21 +350,13 @@ void send_command(Controller& c, LcmBridge& bridge, long seq) {
     u[0] = model::kInputInfo[0].max + 1.0 + std::abs(model::kInputInfo[0].max);
     ++c.faults.out_of_range;
   }
-  model::CommandMessage m{};
-  model::pack_inputs(u, m);
-  m.seq = seq;
-  m.state_utime = c.state.utime;
   if (c.opt.delay_us > 0.0 || c.opt.jitter_us > 0.0) {  // compute time of the control law
     const double us = c.opt.delay_us + std::uniform_real_distribution<double>(0.0, c.opt.jitter_us)(c.random);
     std::this_thread::sleep_for(std::chrono::microseconds(std::llround(us)));
   }
-  m.utime = realtime_us();
-  std::vector<unsigned char> bytes = encode(m);
-  const char* channel = c.opt.link.command_channel.c_str();
+  std::vector<unsigned char> bytes = link.encode(u, seq, c);
   if (c.chance(c.opt.faults.garbage)) {
-    std::uniform_int_distribution<int> byte(0, 255);
-    for (unsigned char& b : bytes) b = static_cast<unsigned char>(byte(c.random));
-    bytes.resize(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, static_cast<int>(bytes.size()))(c.random)));
+    bytes = link.garbage(std::move(bytes), c.random);
     ++c.faults.garbage;
   }
   if (c.chance(c.opt.faults.drop)) {
@@ -252,15 +368,15 @@ void send_command(Controller& c, LcmBridge& bridge, long seq) {
     ++c.faults.reordered;
     return;
   }
-  bridge.publish(channel, bytes.data(), static_cast<int>(bytes.size()));
+  link.send(bytes);
   ++c.commands_sent;
   if (!c.held.empty()) {
-    bridge.publish(channel, c.held.data(), static_cast<int>(c.held.size()));
+    link.send(c.held);
     c.held.clear();
     ++c.commands_sent;
   }
   if (c.chance(c.opt.faults.duplicate)) {
-    bridge.publish(channel, bytes.data(), static_cast<int>(bytes.size()));
+    link.send(bytes);
     ++c.faults.duplicated;
   }
 }
@@ -280,7 +396,9 @@ std::string report(const Controller& c) {
 
 int run(const Options& opt) {
   Controller c(opt);
-  LcmBridge bridge(opt.link.lcm_url, opt.link.state_channel);
+  std::unique_ptr<Link> link;
+  if (opt.link.can_bus.empty()) link = std::make_unique<LcmLink>(opt.link);
+  else link = std::make_unique<CanLink>(opt.link);
   const std::int64_t period_ns = std::llround(1e9 / opt.link.rate_hz);
   const std::int64_t start = monotonic_ns();
   const std::int64_t end = start + std::llround(opt.link.duration_s * 1e9);
@@ -289,14 +407,14 @@ int run(const Options& opt) {
   while (monotonic_ns() < end) {
     // Take states until the next tick, then answer the latest one.
     for (std::int64_t now = monotonic_ns(); now < next; now = monotonic_ns()) {
-      bridge.receive(&on_state, &c, 64, static_cast<int>(std::max<std::int64_t>(1, (next - now) / 1000000)));
+      link->receive(c, static_cast<int>(std::max<std::int64_t>(1, (next - now) / 1000000)));
     }
     next += period_ns;
     if (opt.crash_after_s >= 0.0 && monotonic_ns() - start > std::llround(opt.crash_after_s * 1e9)) {
       std::fprintf(stderr, "pd_controller: crashing as asked (--crash-after %g)\n", opt.crash_after_s);
       std::_Exit(3);  // no clean-up, no report: like a real crash
     }
-    if (c.have_state) send_command(c, bridge, seq++);
+    if (c.have_state) send_command(c, *link, seq++);
   }
   const std::string json = report(c);
   if (!write_report(json, opt.link.report)) return 1;

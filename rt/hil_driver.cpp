@@ -1,7 +1,8 @@
 // Main program of `mbrt hil`: runs one generated model in a fixed-period
-// loop and exchanges states and commands over LCM. Compiled by `mbrt hil`
-// together with the model and its LCM types, with
-//   -DMBRT_MODEL_LCM_HEADER="<name>_lcm.hpp" -DMBRT_MODEL_NAMESPACE=mbrt::models::<name>
+// loop and exchanges states and commands over LCM or a CAN bus. Compiled by
+// `mbrt hil` together with the model and its LCM types and CAN layout, with
+//   -DMBRT_MODEL_LCM_HEADER="<name>_lcm.hpp" -DMBRT_MODEL_CAN_HEADER="<name>_can.hpp"
+//   -DMBRT_MODEL_NAMESPACE=mbrt::models::<name>
 //
 // Each cycle: wait for the release, take the waiting commands (validated by
 // the command gate), step the model, publish its outputs. The cycle
@@ -9,10 +10,15 @@
 // test_lcm_allocates_nothing); the report is written after the loop.
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <mbrt/runtime.hpp>
+#include <mbrt/rt/can_bus.hpp>
+#include <mbrt/rt/can_command_assembler.hpp>
+#include <mbrt/rt/candump_log.hpp>
 #include <mbrt/rt/command_gate.hpp>
 #include <mbrt/rt/hil_report.hpp>
 #include <mbrt/rt/lcm_bridge.hpp>
@@ -20,6 +26,7 @@
 #include <mbrt/rt/program_options.hpp>
 #include <mbrt/rt/realtime_setup.hpp>
 
+#include MBRT_MODEL_CAN_HEADER
 #include MBRT_MODEL_LCM_HEADER
 
 namespace model = MBRT_MODEL_NAMESPACE;
@@ -27,13 +34,19 @@ using namespace mbrt::rt;
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: hil --lcm URL [--rate HZ] [--duration S] [--report F.json]
+constexpr const char* kUsage = R"(usage: hil (--lcm URL | --can BUS [--can-log F]) [--rate HZ] [--duration S] [--report F.json]
            [--state-channel C] [--command-channel C] [--command-timeout S] [--max-command-age S]
            [--publish-every N] [--fifo PRIORITY] [--cpu N]
 )";
 
 // Commands taken per cycle at most: a flood cannot stretch a cycle unboundedly.
 constexpr int kMaxCommandsPerCycle = 32;
+// Over CAN a command is one frame per input, and the bus carries our own
+// state frames back too (multicast loop).
+constexpr int kMaxFramesPerCycle = 2 * kMaxCommandsPerCycle * (model::kInputs + model::can::kStateFrames);
+// Publication times of the last states, by seq: a CAN command's age counts
+// from the state it answers.
+constexpr std::size_t kPublishedStates = 1024;
 
 struct Options {
   LinkOptions link{"", 1000.0, 5.0, "", model::kStateChannel, model::kCommandChannel};
@@ -85,6 +98,13 @@ struct Loop {
   CommandGate<model::kInputs> gate;
   HilRunStats stats;
   std::vector<unsigned char> buffer;
+  // CAN only:
+  model::can::StateFrames state_frames{};
+  std::array<can_frame, kMaxFramesPerCycle> received{};
+  CanCommandAssembler<model::kInputs> assembler;
+  std::array<std::int64_t, kPublishedStates> published_ns{};
+  std::array<std::int64_t, kPublishedStates> published_seq{};
+  long undecodable = 0;
 
   explicit Loop(GateTimes times) : gate(model::kInputInfo, times) {}
 };
@@ -120,28 +140,97 @@ void publish_state(Loop& loop, LcmBridge& bridge, const std::string& channel, st
   bridge.publish(channel.c_str(), loop.buffer.data(), size);
 }
 
+double realtime_s() {
+  timespec now;
+  clock_gettime(CLOCK_REALTIME, &now);
+  return static_cast<double>(now.tv_sec) + now.tv_nsec * 1e-9;
+}
+
+// The CAN link: the bus, and the log of what crossed it, if asked for.
+struct CanLink {
+  std::unique_ptr<CanBus> bus;
+  std::unique_ptr<CandumpLog> log;
+
+  explicit CanLink(const LinkOptions& o) : bus(open_can_bus(o.can_bus)) {
+    const std::string udp = "udp://";
+    if (!o.can_log.empty()) log = std::make_unique<CandumpLog>(o.can_log, o.can_bus.rfind(udp, 0) == 0 ? "udp0" : o.can_bus);
+  }
+  void logged(const can_frame& f) noexcept {
+    if (log) log->write(f, realtime_s());
+  }
+};
+
+// A whole CAN command: its age counts from the publication of the state it
+// answers (unknown if that was more than kPublishedStates states ago: late).
+void offer_can_command(Loop& loop, std::int64_t cycle) {
+  const CanCommandAssembler<model::kInputs>& a = loop.assembler;
+  const std::int64_t answered = unwrap16(cycle, a.state_seq());
+  const std::size_t slot = static_cast<std::size_t>(answered) % kPublishedStates;
+  const std::int64_t now = monotonic_ns();
+  const bool known = answered >= 0 && loop.published_seq[slot] == answered;
+  const std::int64_t age_ns = known ? now - loop.published_ns[slot] : std::numeric_limits<std::int64_t>::max();
+  const CommandVerdict v = loop.gate.offer(a.sequence(), age_ns, a.values(), now);
+  if (v == CommandVerdict::applied && known) loop.stats.command_rtt_ns.record(age_ns);
+}
+
+void receive_can_commands(Loop& loop, CanLink& link, std::int64_t cycle) {
+  const int n = link.bus->receive(loop.received.data(), static_cast<int>(loop.received.size()));
+  for (; loop.undecodable < link.bus->undecodable(); ++loop.undecodable) loop.gate.reject_malformed();
+  for (int k = 0; k < n; ++k) {
+    const can_frame& f = loop.received[static_cast<std::size_t>(k)];
+    mbrt::can::CommandSignal s;
+    const mbrt::can::FrameCheck c = model::can::unpack_command(f, s);
+    if (c == mbrt::can::FrameCheck::unknown_id) continue;  // other traffic on the bus, our own states included
+    link.logged(f);
+    if (c == mbrt::can::FrameCheck::malformed) loop.gate.reject_malformed();
+    else if (loop.assembler.add(s)) offer_can_command(loop, cycle);
+  }
+}
+
+void send_can_state(Loop& loop, CanLink& link, std::int64_t cycle) {
+  model::outputs(loop.state, loop.outputs);
+  const std::uint16_t applied = static_cast<std::uint16_t>(loop.gate.last_sequence());
+  model::can::pack_state(loop.outputs, {static_cast<std::uint16_t>(cycle), applied, loop.state.t}, loop.state_frames);
+  const std::size_t slot = static_cast<std::size_t>(cycle) % kPublishedStates;
+  loop.published_seq[slot] = cycle;
+  loop.published_ns[slot] = monotonic_ns();
+  for (const can_frame& f : loop.state_frames) {
+    link.bus->send(f);
+    link.logged(f);
+  }
+}
+
 int run(const Options& opt) {
   Loop loop({seconds_to_ns(opt.command_timeout_s), seconds_to_ns(opt.max_command_age_s)});
   HilRunStats& stats = loop.stats;
   stats.model = model::kName;
-  stats.transport = "lcm " + opt.link.lcm_url;
+  const bool can = !opt.link.can_bus.empty();
+  stats.transport = can ? "can " + opt.link.can_bus : "lcm " + opt.link.lcm_url;
   stats.rate_hz = opt.link.rate_hz;
   stats.steps_per_cycle = static_cast<int>(std::lround(1.0 / (opt.link.rate_hz * model::kStep)));
   loop.buffer.resize(static_cast<std::size_t>(loop.state_message.getEncodedSize()));
 
-  LcmBridge bridge(opt.link.lcm_url, opt.link.command_channel);
+  std::unique_ptr<LcmBridge> bridge;
+  std::unique_ptr<CanLink> can_link;
+  if (can) can_link = std::make_unique<CanLink>(opt.link);
+  else bridge = std::make_unique<LcmBridge>(opt.link.lcm_url, opt.link.command_channel);
+  loop.published_seq.fill(-1);
   stats.realtime = prepare_realtime(opt.realtime);
 
   const std::int64_t cycles = std::llround(opt.link.duration_s * opt.link.rate_hz);
   PeriodicClock clock(std::llround(1e9 / opt.link.rate_hz));
   for (std::int64_t cycle = 0; cycle < cycles; ++cycle) {
     stats.wake_jitter_ns.record(clock.wait_for_release());
-    bridge.receive(&on_command, &loop, kMaxCommandsPerCycle);
+    if (can) receive_can_commands(loop, *can_link, cycle);
+    else bridge->receive(&on_command, &loop, kMaxCommandsPerCycle);
     loop.state.inputs = loop.gate.inputs_for_cycle(monotonic_ns());
     const std::int64_t step_start = monotonic_ns();
     for (int k = 0; k < stats.steps_per_cycle; ++k) stats.step_failures += model::step(loop.state) != mbrt::StepStatus::ok;
     stats.step_ns.record(monotonic_ns() - step_start);
-    if (cycle % opt.publish_every == 0) publish_state(loop, bridge, opt.link.state_channel, cycle);
+    if (cycle % opt.publish_every == 0) {
+      if (can) send_can_state(loop, *can_link, cycle);
+      else publish_state(loop, *bridge, opt.link.state_channel, cycle);
+    }
     const std::int64_t end = monotonic_ns();
     stats.cycle_ns.record(end - clock.release_ns());
     clock.finish_cycle(end);

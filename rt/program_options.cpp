@@ -47,12 +47,15 @@ bool read_link_option(ProgramOptions& args, LinkOptions& link) {
   else if (a == "--report") link.report = args.text();
   else if (a == "--state-channel") link.state_channel = args.text();
   else if (a == "--command-channel") link.command_channel = args.text();
+  else if (a == "--can") link.can_bus = args.text();
+  else if (a == "--can-log") link.can_log = args.text();
   else return false;
   return true;
 }
 
 void check_link_options(ProgramOptions& args, const LinkOptions& link) {
-  if (link.lcm_url.empty()) args.fail("--lcm URL is required");
+  if (link.lcm_url.empty() == link.can_bus.empty()) args.fail("one of --lcm URL or --can BUS is required");
+  if (!link.can_log.empty() && link.can_bus.empty()) args.fail("--can-log needs --can");
   if (!(link.rate_hz > 0.0)) args.fail("--rate must be > 0");
   if (!(link.duration_s >= 0.0)) args.fail("--duration must be >= 0");
 }

@@ -29,6 +29,10 @@ void warn(RealtimeStatus& status, const std::string& what) {
 
 RealtimeStatus prepare_realtime(const RealtimeOptions& options) {
   RealtimeStatus status;
+  // Stack first: grown after mlockall(MCL_FUTURE), it must stay within
+  // RLIMIT_MEMLOCK or the process dies of SIGSEGV; before, mlockall counts
+  // it and fails cleanly if the limit is too small.
+  prefault_stack();
   status.memory_locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
   if (!status.memory_locked) {
     const std::string why = std::strerror(errno);
@@ -39,7 +43,6 @@ RealtimeStatus prepare_realtime(const RealtimeOptions& options) {
     warn(status, "mlockall failed (" + why + "; RLIMIT_MEMLOCK " + allowed +
                      "): pages may be swapped or faulted in during the loop; raise it with ulimit -l");
   }
-  prefault_stack();
   if (options.cpu >= 0) {
     cpu_set_t set;
     CPU_ZERO(&set);

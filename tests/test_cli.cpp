@@ -164,15 +164,34 @@ TEST_CASE("bad command lines get a usage message and exit code 2") {
   CHECK(mbrt("sim '/nonexistent/model.yaml'").err.find("/nonexistent/model.yaml") != std::string::npos);
 }
 
-TEST_CASE("mbrt gen writes the LCM types and packing of a model with inputs and outputs") {
+TEST_CASE("mbrt gen writes the LCM types, the DBC and packing of a model with inputs and outputs") {
   const fs::path dir = fs::path(MBRT_TEST_WORK_DIR) / "gen_lcm";
   const Run r = mbrt("gen " + model("actuated.yaml") + " -o '" + dir.string() + "'");
   REQUIRE(r.exit_code == 0);
   CHECK(fs::exists(dir / "actuated.lcm"));
   CHECK(fs::exists(dir / "actuated_lcm.hpp"));
+  CHECK(fs::exists(dir / "actuated.dbc"));
+  CHECK(fs::exists(dir / "actuated_can.hpp"));
   REQUIRE(mbrt("gen " + model("four_bar.yaml") + " -o '" + dir.string() + "'").exit_code == 0);
   CHECK(fs::exists(dir / "four_bar.hpp"));
   CHECK(!fs::exists(dir / "four_bar.lcm"));  // no inputs: no LCM types
+  CHECK(!fs::exists(dir / "four_bar.dbc"));
+}
+
+TEST_CASE("mbrt gen refuses input limits the CAN layout cannot carry") {
+  const fs::path dir = fs::path(MBRT_TEST_WORK_DIR) / "gen_can_limits";
+  fs::create_directories(dir);
+  std::ifstream in(fs::path(MBRT_TEST_MODELS) / "actuated.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string limit = "min: -20, max: 20";
+  REQUIRE(yaml.find(limit) != std::string::npos);
+  yaml.replace(yaml.find(limit), limit.size(), "min: -3000, max: 3000");
+  std::ofstream(dir / "actuated.yaml") << yaml;
+  const Run r = mbrt("gen '" + (dir / "actuated.yaml").string() + "' -o '" + dir.string() + "'");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("do not fit the CAN layout") != std::string::npos);
 }
 
 TEST_CASE("mbrt hil refuses a model without inputs and outputs before compiling anything") {

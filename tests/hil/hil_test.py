@@ -15,10 +15,10 @@ def environment(work):
     return dict(os.environ, MBRT_CACHE_DIR=os.path.join(work, "cache"))
 
 
-def compile_programs(mbrt, model, env):
+def compile_programs(mbrt, model, env, link=("--lcm", LCM_URL)):
     """Builds `mbrt hil` and `mbrt stub` for the model before anything is timed."""
     for command in ("hil", "stub"):
-        subprocess.run([mbrt, command, model, "--lcm", LCM_URL, "--duration", "0"], env=env,
+        subprocess.run([mbrt, command, model, *link, "--duration", "0"], env=env,
                        stdout=subprocess.DEVNULL, check=True)
 
 

@@ -25,8 +25,8 @@ class ProgramOptions {
   int i_ = 0;
 };
 
-// Options both HIL programs take: the LCM link, their own rate and run time,
-// the report file.
+// Options both HIL programs take: the link (LCM, or a CAN bus and its
+// optional candump log), their own rate and run time, the report file.
 struct LinkOptions {
   std::string lcm_url;
   double rate_hz;
@@ -34,6 +34,8 @@ struct LinkOptions {
   std::string report;
   std::string state_channel;
   std::string command_channel;
+  std::string can_bus;  // udp://GROUP:PORT or a SocketCAN interface
+  std::string can_log;  // candump log of the frames sent and received
 };
 
 // Reads the current option into `link` if it is one of LinkOptions; false

@@ -1,0 +1,31 @@
+// A CAN bus the HIL programs send and receive classic frames on: raw
+// SocketCAN (`vcan0`, `can0`: any interface name) or CAN over UDP multicast
+// in python-can's `udp_multicast` format (`udp://GROUP:PORT`, TTL 0, so
+// datagrams never leave the host). Opened at start-up (throws there); send
+// and receive never block, never throw and allocate nothing.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <linux/can.h>
+
+namespace mbrt::rt {
+
+class CanBus {
+ public:
+  virtual ~CanBus() = default;
+  virtual bool send(const can_frame& f) noexcept = 0;
+  // Fills up to max frames with those waiting; returns how many. A datagram
+  // or frame that is not a classic CAN frame counts in undecodable().
+  virtual int receive(can_frame* frames, int max) noexcept = 0;
+  long undecodable() const noexcept { return undecodable_; }
+
+ protected:
+  long undecodable_ = 0;
+};
+
+// "udp://GROUP:PORT" (IPv4 multicast group) or a SocketCAN interface name.
+std::unique_ptr<CanBus> open_can_bus(const std::string& spec);
+
+}  // namespace mbrt::rt

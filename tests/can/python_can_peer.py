@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""`mbrt hil --can udp://...` against python-can's udp_multicast bus (run
+inside scripts/in-private-network: loopback only, TTL 0). The peer reads
+the model's DBC (tests/can/dbc.py), answers the states with command frames,
+and sends one of each fault; the loop's report must count exactly those.
+
+  peer: the commands it accepted and refused, the states it sent.
+  log:  the bridge's candump log (--can-log), read with python-can's
+        CanutilsLogReader and decoded with the DBC by the candied npm
+        package, holds the commands the peer sent, value for value, and
+        states whose seq and t agree. Skipped (77) without node or candied.
+
+usage: python_can_peer.py MBRT MODEL WORK_DIR peer|log [NODE_MODULES]
+"""
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "hil"))
+sys.path.insert(0, os.path.dirname(__file__))
+import dbc  # noqa: E402
+from hil_test import check, environment, finish  # noqa: E402
+
+try:
+    import can
+except ImportError:
+    print("SKIP: python3-can is not installed")
+    sys.exit(77)
+
+GROUP, PORT = "239.74.163.2", 43113  # python-can's IPv4 default group and port
+BUS = f"udp://{GROUP}:{PORT}"
+STATE_ID, COMMAND_ID = 0x100, 0x200
+INT32_MIN = -(1 << 31)
+MAX_AGE_S = 1.0  # generous: a busy machine must not make a command late
+VALID = 40       # valid commands the peer sends
+
+mbrt, model, work, mode = sys.argv[1:5]
+node_modules = sys.argv[5] if len(sys.argv) > 5 else ""
+if mode == "log" and (shutil.which("node") is None or not os.path.isdir(os.path.join(node_modules, "candied"))):
+    print(f"SKIP: node or the candied package ({node_modules}) is missing; scripts/install-deps installs them")
+    sys.exit(77)
+env = environment(work)
+name = os.path.splitext(os.path.basename(model))[0]
+subprocess.run([mbrt, "gen", model, "-o", os.path.join(work, "gen")], check=True)
+messages = dbc.load(os.path.join(work, "gen", f"{name}.dbc"))
+commands = sorted(i for i in messages if i >= COMMAND_ID)
+inputs = [messages[i].signals[2][0] for i in commands]  # seq, state_seq, then the value
+factor = messages[commands[0]].signals[2][4]
+# Build the loop's program before anything is timed.
+subprocess.run([mbrt, "hil", model, "--can", BUS, "--duration", "0"], env=env, stdout=subprocess.DEVNULL, check=True)
+
+report, log = os.path.join(work, f"{mode}_hil.json"), os.path.join(work, f"{mode}.log")
+hil = subprocess.Popen([mbrt, "hil", model, "--can", BUS, "--rate", "1000", "--duration", "3",
+                        "--max-command-age", str(MAX_AGE_S), "--command-timeout", str(MAX_AGE_S),
+                        "--report", report, "--can-log", log], env=env, stdout=subprocess.DEVNULL)
+bus = can.Bus(interface="udp_multicast", channel=GROUP, port=PORT, hop_limit=0)
+state_seq = None
+command_seqs = []  # command_seq of each state the peer received
+
+
+def take_states(seconds):
+    global state_seq
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        m = bus.recv(timeout=0.01)
+        if m is not None and m.arbitration_id == STATE_ID:
+            s = messages[STATE_ID].decode(m.data)
+            state_seq = s["seq"][0]
+            command_seqs.append(s["command_seq"][0])
+
+
+def send(seq, raw_values, length=8):
+    """One command: a frame per input, raw values as the DBC encodes them."""
+    for frame_id, signal, raw in zip(commands, inputs, raw_values):
+        data = messages[frame_id].encode({"seq": seq, "state_seq": state_seq, signal: raw})[:length]
+        bus.send(can.Message(arbitration_id=frame_id, data=data, is_extended_id=False))
+
+
+def raw(value):
+    return round(value / factor)
+
+
+sent = {}  # seq -> values of the valid commands
+take_states(0.5)
+check(state_seq is not None, "the peer received state frames")
+for seq in range(VALID):
+    values = [0.5 + 0.001 * seq - 0.25 * k for k in range(len(inputs))]
+    send(seq, [raw(v) for v in values])
+    sent[seq] = values
+    take_states(0.01)
+send(VALID, [INT32_MIN] * len(inputs))                # NaN: the invalid marker
+send(VALID + 1, [raw(1000.0)] * len(inputs))          # beyond every input's limit
+send(VALID + 2, [raw(0.125)] * len(inputs))           # valid...
+sent[VALID + 2] = [0.125] * len(inputs)
+send(VALID + 2, [raw(0.125)] * len(inputs))           # ...and again: a duplicate
+send(VALID + 3, [raw(0.0)] * len(inputs), length=7)   # wrong DLC on every frame
+take_states(0.3)
+bus.shutdown()  # python-can raises on the datagram that follows
+with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:  # not msgpack at all
+    s.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, 0)
+    s.sendto(b"\x93not a CAN message", (GROUP, PORT))
+code = hil.wait(timeout=600)
+check(code == 0, f"mbrt hil exit code {code}")
+with open(report) as f:
+    sim = json.load(f)
+
+if mode == "peer":
+    rejected = sim["commands_rejected"]
+    check(sim["transport"] == "can " + BUS, f"transport {sim['transport']}")
+    check(sim["cycles"] == 3000, f"the loop ran all its cycles ({sim['cycles']})")
+    check(sim["commands_applied"] == VALID + 1, f"applied {sim['commands_applied']} == {VALID + 1}")
+    expected = {"non_finite": 1, "out_of_range": 1, "duplicate": 1, "malformed": len(inputs) + 1, "late": 0,
+                "out_of_order": 0}
+    for reason, n in expected.items():
+        check(rejected[reason] == n, f"{reason} rejections {rejected[reason]} == {n}")
+    check(sim["commands_missing"] == 0, f"nothing missing ({sim['commands_missing']})")
+    check(VALID + 2 in command_seqs, "the states reported the last applied command's sequence number")
+    check(sim["state_finite"] is True and sim["step_failures"] == 0, "the state stayed finite")
+else:
+    frames = [m for m in can.CanutilsLogReader(log)]
+    check(len(frames) > 0, f"the log has {len(frames)} frames")
+    lines = "".join(json.dumps({"id": m.arbitration_id, "data": list(m.data)}) + "\n" for m in frames)
+    decoder = os.path.join(os.path.dirname(__file__), "decode_with_dbc.js")
+    out = subprocess.run(["node", decoder, os.path.join(work, "gen", f"{name}.dbc")], input=lines, text=True,
+                         capture_output=True, env=dict(os.environ, NODE_PATH=node_modules), check=True)
+    decoded = [json.loads(line) for line in out.stdout.splitlines()]
+    check(len(decoded) == len(frames), "candied answered every frame")
+    logged = {}  # (seq, input) -> value of the command frames of the right length
+    states = []
+    for m, d in zip(frames, decoded):
+        if d is None:
+            check(m.arbitration_id >= COMMAND_ID and len(m.data) == 7, f"only the wrong-DLC frames do not decode ({m})")
+            continue
+        sig = d["signals"]
+        if m.arbitration_id >= COMMAND_ID:
+            k = commands.index(m.arbitration_id)
+            logged[(sig["seq"]["value"], k)] = sig[inputs[k]]["value"]
+        elif m.arbitration_id == STATE_ID:
+            states.append((sig["seq"]["value"], sig["t"]["value"]))
+    mismatched = [(seq, k) for seq, values in sent.items() for k, v in enumerate(values)
+                  if abs(logged.get((seq, k), float("nan")) - v) > factor / 2]
+    check(not mismatched, f"every command value sent is in the log ({len(sent)} commands; mismatched {mismatched[:5]})")
+    seqs = [s for s, _ in states]
+    check(len(states) == 3000 and seqs == list(range(3000)), f"the log holds every state, in order ({len(states)})")
+    h = 1.0 / 1000  # one model step per cycle at 1 kHz for this model
+    bad_t = [(s, t) for s, t in states if abs(t - (s + 1) * h) > 1e-5]
+    check(not bad_t, f"each state's t is (seq + 1) h ({bad_t[:3]})")
+finish()

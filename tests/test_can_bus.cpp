@@ -1,0 +1,103 @@
+// The CAN buses: over UDP multicast (loopback, TTL 0) a frame sent arrives
+// whole, a datagram that is not a CAN message is counted, and sending and
+// receiving allocate nothing; a SocketCAN interface that does not exist is
+// refused at start-up. Needs a network with multicast on loopback: ctest runs
+// it inside scripts/in-private-network.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cstring>
+#include <stdexcept>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <mbrt/rt/can_bus.hpp>
+
+#include "allocation_counter.hpp"
+
+namespace {
+constexpr const char* kBus = "udp://239.74.163.2:43114";
+
+can_frame test_frame(canid_t id) {
+  can_frame f{};
+  f.can_id = id;
+  f.len = 5;
+  for (int i = 0; i < 5; ++i) f.data[i] = static_cast<__u8>(0x10 * i + 1);
+  return f;
+}
+
+// Waits (up to ~1 s) for a frame on bus.
+int receive_some(mbrt::rt::CanBus& bus, can_frame* frames, int max) {
+  for (int i = 0; i < 1000; ++i) {
+    const int n = bus.receive(frames, max);
+    if (n > 0) return n;
+    usleep(1000);
+  }
+  return 0;
+}
+}  // namespace
+
+TEST_CASE("a frame crosses the UDP bus whole; extended and remote flags included") {
+  auto a = mbrt::rt::open_can_bus(kBus), b = mbrt::rt::open_can_bus(kBus);
+  for (const canid_t id : {canid_t{0x123}, canid_t{0x1abcdef | CAN_EFF_FLAG}, canid_t{0x7ff | CAN_RTR_FLAG}}) {
+    const can_frame sent = test_frame(id);
+    REQUIRE(a->send(sent));
+    std::array<can_frame, 4> got{};
+    REQUIRE(receive_some(*b, got.data(), 4) >= 1);
+    CHECK(got[0].can_id == sent.can_id);
+    CHECK(got[0].len == sent.len);
+    CHECK(std::memcmp(got[0].data, sent.data, sent.len) == 0);
+    while (a->receive(got.data(), 4) > 0) {  // a hears itself (multicast loop): drain
+    }
+  }
+}
+
+TEST_CASE("a datagram that is not a CAN message is counted, not delivered") {
+  auto bus = mbrt::rt::open_can_bus(kBus);
+  const int s = socket(AF_INET, SOCK_DGRAM, 0);
+  REQUIRE(s >= 0);
+  const unsigned char ttl = 0;
+  setsockopt(s, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof ttl);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(43114);
+  inet_pton(AF_INET, "239.74.163.2", &to.sin_addr);
+  const char garbage[] = "\x81\xa4" "data" "\xc4\x09";  // a map whose data claims 9 bytes
+  REQUIRE(sendto(s, garbage, sizeof garbage - 1, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to) > 0);
+  close(s);
+  std::array<can_frame, 4> got{};
+  for (int i = 0; i < 1000 && bus->undecodable() == 0; ++i) {
+    CHECK(bus->receive(got.data(), 4) == 0);
+    usleep(1000);
+  }
+  CHECK(bus->undecodable() == 1);
+}
+
+TEST_CASE("sending and receiving on the UDP bus allocates nothing") {
+  auto a = mbrt::rt::open_can_bus(kBus), b = mbrt::rt::open_can_bus(kBus);
+  std::array<can_frame, 32> got{};
+  const can_frame f = test_frame(0x200);
+  long received = 0, seen = 0;
+  {
+    AllocationCounter counter;
+    for (int i = 0; i < 10000; ++i) {
+      a->send(f);
+      received += b->receive(got.data(), 32);
+      a->receive(got.data(), 32);
+    }
+    seen = counter.count();
+  }
+  MESSAGE(received << " of 10000 frames came back");
+  CHECK(received > 1000);  // the receive path really ran
+  CHECK(seen == 0);
+}
+
+TEST_CASE("bad bus names are refused at start-up") {
+  CHECK_THROWS_AS(mbrt::rt::open_can_bus("no_such_can9"), std::runtime_error);
+  CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://10.0.0.1:43114"), std::runtime_error);  // not multicast
+  CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://239.74.163.2"), std::runtime_error);
+  CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://239.74.163.2:x"), std::runtime_error);
+}

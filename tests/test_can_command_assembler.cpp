@@ -1,0 +1,55 @@
+// Whole commands from CAN command frames: complete only when every input's
+// frame of one sequence number has arrived, in any order; a repeated frame
+// does not complete a command; a new sequence number starts over; a repeated
+// whole command is assembled again (for the gate to call a duplicate); and
+// 16-bit sequence numbers unwrap across 65535 -> 0.
+#include <doctest/doctest.h>
+
+#include <mbrt/rt/can_command_assembler.hpp>
+
+using mbrt::can::CommandSignal;
+using mbrt::rt::CanCommandAssembler;
+using mbrt::rt::unwrap16;
+
+TEST_CASE("unwrap16 picks the counter nearest the last one") {
+  CHECK(unwrap16(0, 0) == 0);
+  CHECK(unwrap16(10, 12) == 12);
+  CHECK(unwrap16(10, 8) == 8);
+  CHECK(unwrap16(65535, 0) == 65536);
+  CHECK(unwrap16(65536 + 5, 65534) == 65534);
+  CHECK(unwrap16(3 * 65536 + 100, 99) == 3 * 65536 + 99);
+}
+
+TEST_CASE("a command is whole when each input's frame of one sequence number arrived") {
+  CanCommandAssembler<3> a;
+  CHECK(!a.add({2, 7, 5, 2.0}));
+  CHECK(!a.add({0, 7, 5, 0.5}));
+  CHECK(!a.add({0, 7, 5, 9.0}));  // repeated frame: neither completes nor overwrites
+  CHECK(a.add({1, 7, 5, 1.0}));
+  CHECK(a.sequence() == 7);
+  CHECK(a.state_seq() == 5);
+  CHECK(a.values() == std::array<double, 3>{0.5, 1.0, 2.0});
+  // The same command again is assembled again.
+  CHECK(!a.add({0, 7, 5, 0.5}));
+  CHECK(!a.add({1, 7, 5, 1.0}));
+  CHECK(a.add({2, 7, 5, 2.0}));
+  CHECK(a.sequence() == 7);
+}
+
+TEST_CASE("a frame of another sequence number drops the unfinished command") {
+  CanCommandAssembler<2> a;
+  CHECK(!a.add({0, 1, 0, 1.0}));
+  CHECK(!a.add({0, 2, 1, 2.0}));  // command 1 never completes
+  CHECK(!a.add({1, 1, 0, 1.0}));  // a late frame of command 1 starts it over
+  CHECK(!a.add({1, 2, 1, 2.0}));
+  CHECK(a.add({0, 2, 1, 2.0}));
+  CHECK(a.sequence() == 2);
+}
+
+TEST_CASE("sequence numbers unwrap across 65535 -> 0") {
+  CanCommandAssembler<1> a;
+  for (long seq = 0; seq < 70000; seq += 1000) {
+    REQUIRE(a.add({0, static_cast<std::uint16_t>(seq), 0, 0.0}));
+    CHECK(a.sequence() == seq);
+  }
+}
