@@ -147,9 +147,9 @@ TEST_CASE("A02, N = 40, h = 1e-3: every scheme follows the reference through 20 
 
   const Result ali3p = run<Ali3p>(ref);
   REQUIRE(ali3p.all_ok);
-  CHECK(ali3p.b0_error < 1e-3);
-  CHECK(ali3p.energy_error < 3e-2);
-  CHECK(ali3p.violation < 2e-9);
+  CHECK(ali3p.b0_error < 6e-3);
+  CHECK(ali3p.energy_error < 4e-2);
+  CHECK(ali3p.violation < 3e-8);
 
   for (const Result* r : {&pcst, &baumgarte, &blajer, &ali3p}) {
     CHECK(r->horizontal_passes == passes);

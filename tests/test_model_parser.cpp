@@ -378,7 +378,7 @@ solver:
   stepsize: 0.001
 )",
                     "solver.stepsize", 6,
-                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization, baumgarte_alpha, baumgarte_beta, corrections)");
+                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization, baumgarte_alpha, baumgarte_beta, corrections, ali3p)");
 }
 
 TEST_CASE("a key given twice in one map is rejected naming the first") {
