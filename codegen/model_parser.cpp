@@ -55,7 +55,7 @@ const std::vector<std::pair<std::string, JointType>> kJointTypes = {
     {"prismatic", JointType::prismatic},     {"fixed", JointType::fixed},
     {"distance", JointType::distance},       {"screw", JointType::screw},
     {"planar", JointType::planar},           {"rolling_disk", JointType::rolling_disk},
-    {"knife_edge", JointType::knife_edge},   {"rolling_ball", JointType::rolling_ball},
+    {"rolling_ball", JointType::rolling_ball}, {"knife_edge", JointType::knife_edge},
     {"velocity_toward", JointType::velocity_toward}};
 const std::vector<std::pair<std::string, DriverType>> kDriverTypes = {
     {"joint_angle", DriverType::joint_angle},
@@ -503,12 +503,16 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   const Section s(item, kJointKeys);
   Joint j;
   j.where = item.where;
-  const Value name = s.get("name");
-  j.name = read_identifier(name);
-  check_unique(name, j.name, "joint", names_seen);
   const Value type = s.get("type");
   j.type = read_type(type, kJointTypes);
   s.restrict_to(joint_keys(j.type), "a " + type.node.Scalar() + " joint");
+  // A ground contact may go unnamed: it is then "<body>_<type>".
+  const bool contact = j.type == JointType::rolling_disk || j.type == JointType::rolling_ball ||
+                       j.type == JointType::knife_edge;
+  const std::optional<Value> given = s.find("name");
+  const Value name = given ? *given : contact ? s.get("body") : s.get("name");
+  j.name = given ? read_identifier(name) : read_identifier(name) + "_" + type.node.Scalar();
+  check_unique(name, j.name, "joint", names_seen);
   if (j.type == JointType::rolling_disk || j.type == JointType::rolling_ball || j.type == JointType::knife_edge) {
     return parse_contact(s, model, j);
   }

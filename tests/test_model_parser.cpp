@@ -736,7 +736,7 @@ joints:
 )",
                     "joints[0].type", 6,
                     "expected one of: spherical, revolute, universal, cylindrical, prismatic, fixed, "
-                    "distance, screw, planar, got 'hinge'");
+                    "distance, screw, planar, rolling_disk, rolling_ball, knife_edge, velocity_toward, got 'hinge'");
 }
 
 TEST_CASE("a zero-length axis is rejected") {
@@ -959,4 +959,40 @@ TEST_CASE("outputs of unknown joints, of ground or with keys of another type are
   - {name: p, type: body_pose, body: link, joint: pin}
 )",
                     "outputs[0].joint", 9, "key 'joint' does not apply to a body_pose output");
+}
+
+TEST_CASE("ground contacts parse as written in the contract, unnamed ones named after body and type") {
+  const Model m = parse_model(R"(name: contacts
+bodies:
+  - {name: wheel, mass: 5, inertia: [0.625, 0.3125, 0.3125], position: [0, 0, 0.5]}
+  - {name: ball, mass: 7, inertia: [0.03, 0.03, 0.03], position: [2, 0, 0.11]}
+  - {name: b, mass: 1, inertia: [1, 1, 1], position: [4, 0, 0]}
+joints:
+  - {type: rolling_disk, body: wheel, radius: 0.5, axis: [1, 0, 0], plane_point: [0, 0, 0], plane_normal: [0, 0, 1]}
+  - {type: rolling_ball, body: ball, radius: 0.11, center: [2.01, 0, 0.11], plane_point: [0, 0, 0], plane_normal: [0, 0, 1]}
+  - {name: blade, type: knife_edge, body: b, point: [4, 0, 0], direction: [0, 2, 0], plane_normal: [0, 0, 1]}
+  - {name: chase, type: velocity_toward, body1: ball, body2: b, point1: [2, 0, 0.11], point2: [4, 0, 0], plane_normal: [0, 0, 1]}
+)",
+                              "model.yaml");
+  REQUIRE(m.joints.size() == 4);
+  CHECK(m.joints[0].name == "wheel_rolling_disk");
+  CHECK(m.joints[0].type == JointType::rolling_disk);
+  CHECK(m.joints[0].body1 == kGround);
+  CHECK(m.joints[0].radius == 0.5);
+  CHECK(m.joints[1].name == "ball_rolling_ball");
+  CHECK(m.joints[1].point == Eigen::Vector3d(2.01, 0, 0.11));
+  CHECK(m.joints[2].direction == Eigen::Vector3d(0, 1, 0));
+  CHECK(m.joints[3].type == JointType::velocity_toward);
+  CHECK(m.joints[3].point2 == Eigen::Vector3d(4, 0, 0));
+}
+
+TEST_CASE("a knife edge whose direction leaves the plane is rejected with its line") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: b, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - {name: blade, type: knife_edge, body: b, point: [0, 0, 0], direction: [0, 1, 1],
+     plane_normal: [0, 0, 1]}
+)",
+                    "joints[0].direction", 5, "the edge direction must lie in the plane");
 }
