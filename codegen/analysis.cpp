@@ -224,12 +224,13 @@ Ali3pPlan ali3p_plan(const Model& model, const std::vector<ConstraintBlock>& blo
   const double c = (1.0 - p.delta_f) / (1.0 - p.delta_m) * p.beta * h * h;
   const double s_max = s_diagonal.size() > 0 ? s_diagonal.maxCoeff() : 0.0;
   p.alpha.assign(blocks.size(), set.alpha > 0.0 ? set.alpha : 1.0 / (c * set.relative_shift * s_max));
-  for (const auto& [name, alpha] : set.alpha_of) {
+  for (const std::pair<std::string, double>& given : set.alpha_of) {
+    const std::string& name = given.first;
     const auto it = std::find_if(blocks.begin(), blocks.end(), [&](const ConstraintBlock& b) { return b.name == name; });
     if (it == blocks.end()) {
       throw ModelError(set.alpha_of_where, "solver.ali3p.alpha_of." + name, "no joint or driver named '" + name + "'");
     }
-    p.alpha[static_cast<size_t>(it - blocks.begin())] = alpha;
+    p.alpha[static_cast<size_t>(it - blocks.begin())] = given.second;
   }
   return p;
 }
