@@ -110,7 +110,7 @@ mbrt::JointFrame joint_frame(const Model& model, const Joint& j, const std::stri
     f.c1 = j.plane_normal;  // a world direction, whatever body 1 does
     return f;
   }
-  if (j.type == JointType::rolling_disk || j.type == JointType::rolling_ball || j.type == JointType::knife_edge) {
+  if (is_ground_contact(j.type)) {
     // Body 1 is the ground: its "body axes" are world axes.
     f.c1 = j.plane_normal;
     complete_triad(f.c1, f.a1, f.b1);

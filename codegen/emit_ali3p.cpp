@@ -83,7 +83,13 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
   }
   o << "  set_velocities(u, s);\n}\n\n";
 
-  const bool weighted = a_.ali3p.delta_f != 0.0;
+  const bool weighted = ali3p_weighted();
+  o << "// (c, l, lambda) => (M^-1 g): g = B^T lambda - F per body.\n"
+    << "BodyVectors constraint_minus_applied(const ConstraintSystem& c, const Loads& l, const Rows& lambda) noexcept {\n"
+    << "  BodyVectors x = free_accelerations(l);\n"
+    << "  for (mbrt::Vec6& v : x) v = -v;\n"
+    << "  subtract_constraint_forces(c, lambda, -1.0, x);\n"
+    << "  return x;\n}\n\n";
   o << "// (c, l, lambda, a) => (a): one Newton correction of the dynamic equations\n"
     << "//   (1 - dM) M a + dM M a_n + (1 - dF) g + dF g_n = 0,  g = B^T lambda - F,\n"
     << "// lambda = lambda* + alpha phi, with the tangent M + c B^T alpha B inverted as\n"
@@ -91,9 +97,7 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
     << "void newton_correction(const ConstraintSystem& c, const Loads& l, const Rows& lambda,"
     << (weighted ? " const BodyVectors& a_n,\n                       const BodyVectors& g_n," : "")
     << " BodyVectors& a) noexcept {\n"
-    << "  BodyVectors x = free_accelerations(l);\n"
-    << "  for (mbrt::Vec6& v : x) v = -v;\n"
-    << "  subtract_constraint_forces(c, lambda, -1.0, x);  // x = M^-1 g\n";
+    << "  BodyVectors x = constraint_minus_applied(c, l, lambda);\n";
   if (weighted) {
     o << "  for (int b = 0; b < kBodies; ++b) {\n"
       << "    x[b] = a[b] + (kDeltaM * a_n[b] + (1.0 - kDeltaF) * x[b] + kDeltaF * g_n[b]) / (1.0 - kDeltaM);\n"
@@ -136,7 +140,7 @@ Rows project(const ConstraintSystem& c, const Rows& g, BodyVectors& x) noexcept 
 }
 
 void Emitter::ali3p_step(std::ostringstream& o) const {
-  const bool weighted = a_.ali3p.delta_f != 0.0;
+  const bool weighted = ali3p_weighted();
   o << R"(mbrt::StepStatus step(State& s) noexcept {
   const State n = s;
   const BodyVectors u_n = generalized_velocities(n);
@@ -175,9 +179,7 @@ void Emitter::ali3p_step(std::ostringstream& o) const {
 )";
   if (weighted) {
     o << "  " << loads_call() << R"(;
-  s.ali3p_force = free_accelerations(l);
-  for (mbrt::Vec6& v : s.ali3p_force) v = -v;
-  subtract_constraint_forces(c, s.lambda, -1.0, s.ali3p_force);
+  s.ali3p_force = constraint_minus_applied(c, l, s.lambda);
 )";
   }
   o << R"(

@@ -60,7 +60,7 @@ std::string Emitter::header() const {
       << "  // (lambda adds the acceleration projection's part).\n"
       << "  Eigen::Matrix<double, kConstraintRows, 1> ali3p_lambda_star;\n";
   }
-  if (scheme_kind() == Scheme::ali3p && a_.ali3p.delta_f != 0.0) {
+  if (ali3p_weighted()) {
     o << "  // M^-1 (B^T lambda - F) at t, the generalized-alpha weighting's old term.\n"
       << "  std::array<mbrt::Vec6, kBodies> ali3p_force;\n";
   }
@@ -460,7 +460,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
     << (ali3p ? "  factorize(c, Rows::Constant(kRegularization));\n" : "  factorize(c);\n")
     << "  Loads l;\n  " << loads_call() << ";\n  constraint_forces(c, l, stacked_phi(c), s);\n";
   if (ali3p) o << "  s.ali3p_lambda_star = s.lambda;\n";
-  if (ali3p && a_.ali3p.delta_f != 0.0) {
+  if (ali3p_weighted()) {
     o << "  const BodyVectors a = accelerations_of(s);\n"
       << "  for (int b = 0; b < kBodies; ++b) s.ali3p_force[b] = -a[b];  // M a = F - B^T lambda\n";
   }

@@ -132,7 +132,8 @@ class Emitter {
   void staggered_stages(std::ostringstream& o) const;
   void staggered_step(std::ostringstream& o) const;
 
-  // emit_ali3p.cpp
+  // emit_ali3p.cpp. Generalized-alpha keeps M^-1 (B^T lambda - F) of the last step.
+  bool ali3p_weighted() const { return scheme_kind() == Scheme::ali3p && a_.ali3p.delta_f != 0.0; }
   void ali3p_constants(std::ostringstream& o) const;
   void ali3p_stages(std::ostringstream& o) const;
   void ali3p_step(std::ostringstream& o) const;

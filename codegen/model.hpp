@@ -55,6 +55,11 @@ enum class JointType {
   rolling_disk, rolling_ball, knife_edge, velocity_toward
 };
 
+// rolling_disk, rolling_ball, knife_edge: one body on the ground plane.
+inline bool is_ground_contact(JointType t) {
+  return t == JointType::rolling_disk || t == JointType::rolling_ball || t == JointType::knife_edge;
+}
+
 struct Joint {
   std::string name;
   SourceLocation where;

@@ -507,15 +507,12 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   j.type = read_type(type, kJointTypes);
   s.restrict_to(joint_keys(j.type), "a " + type.node.Scalar() + " joint");
   // A ground contact may go unnamed: it is then "<body>_<type>".
-  const bool contact = j.type == JointType::rolling_disk || j.type == JointType::rolling_ball ||
-                       j.type == JointType::knife_edge;
+  const bool contact = is_ground_contact(j.type);
   const std::optional<Value> given = s.find("name");
   const Value name = given ? *given : contact ? s.get("body") : s.get("name");
   j.name = given ? read_identifier(name) : read_identifier(name) + "_" + type.node.Scalar();
   check_unique(name, j.name, "joint", names_seen);
-  if (j.type == JointType::rolling_disk || j.type == JointType::rolling_ball || j.type == JointType::knife_edge) {
-    return parse_contact(s, model, j);
-  }
+  if (contact) return parse_contact(s, model, j);
 
   j.body1 = read_body_ref(s.get("body1"), model);
   const Value body2 = s.get("body2");
