@@ -338,6 +338,7 @@ Analysis analyse(const Model& model) {
     a.regularization = model.solver.penalty * s_diagonal.maxCoeff();
   }
   if (model.solver.scheme == "ali3p") a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
+  if (model.solver.scheme == "staggered-nps") a.tree = plan_tree(model, a.constraints);
 
   if (!a.gravity) a.skipped.push_back("gravity: no gravity term");
   if (a.particle_count > 0) a.skipped.push_back(std::to_string(a.particle_count) + " particle(s): no rotational state");

@@ -11,6 +11,7 @@
 #include <mbrt/joints.hpp>
 
 #include "model.hpp"
+#include "tree_plan.hpp"
 
 namespace mbrt::codegen {
 
@@ -88,6 +89,7 @@ struct Analysis {
   double baumgarte_alpha = 0.0;            // baumgarte, 1/s
   double baumgarte_beta = 0.0;             // baumgarte, 1/s
   Ali3pPlan ali3p;                         // ali3p only
+  TreePlan tree;                           // staggered-nps only
   std::vector<std::string> skipped;        // what the scene does not need, for reports
 };
 

@@ -88,7 +88,9 @@ void Emitter::constants(std::ostringstream& o) const {
     << "constexpr double kRegularization = " << num(a_.regularization) << ";  // added to diag(S)\n";
   switch (scheme_kind()) {
     case Scheme::pcst:
+    case Scheme::nps:
       o << "constexpr double kStabilization = " << num(a_.stabilization) << ";  // alpha, 1/s\n";
+      if (nps_cuts()) o << "constexpr int kCutRows = " << a_.tree.cut_rows << ";  // rows outside the tree\n";
       break;
     case Scheme::baumgarte:
       o << "constexpr double kBaumgarteAlpha = " << num(a_.baumgarte_alpha) << ";  // 1/s\n"
@@ -180,19 +182,21 @@ void Emitter::workspace_types(std::ostringstream& o) const {
     << "  std::array<mbrt::Wrench, kBodies> w;\n"
     << "  double elastic_energy;\n"
     << "};\n\n"
-    << "// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of\n"
-    << "// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.\n"
+    << (scheme_kind() == Scheme::nps ? "// Constraint rows.\n"
+                                     : "// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of\n"
+                                       "// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.\n")
     << "struct ConstraintSystem {\n";
   for (int ji = 0; ji < blocks(); ++ji) {
     o << "  mbrt::ConstraintRows<" << rows(ji) << "> rows_" << jname(ji) << ";  // " << block(ji).kernel << " "
       << m_.body_name(block(ji).body1) << " - " << m_.body_name(block(ji).body2) << ", rows " << first_row(ji)
       << ".." << first_row(ji) + rows(ji) - 1 << "\n";
+    if (scheme_kind() == Scheme::nps) continue;
     for (int b : moving_bodies(ji)) {
       o << "  " << block_type(6, rows(ji)) << " mbt_" << ji << "_" << b << ";  // M^-1 B^T: " << jname(ji) << ", "
         << body(b).name << "\n";
     }
   }
-  for (int k : a_.pattern.order) {
+  for (int k : scheme_kind() == Scheme::nps ? std::vector<int>{} : a_.pattern.order) {
     o << "  " << block_type(rows(k), rows(k)) << " L_" << k << "_" << k << ";  // " << jname(k) << "\n";
     for (int i : a_.pattern.lower[static_cast<size_t>(k)]) {
       o << "  " << block_type(rows(i), rows(k)) << " L_" << i << "_" << k << ";  // " << jname(i) << " x "
@@ -200,6 +204,7 @@ void Emitter::workspace_types(std::ostringstream& o) const {
     }
   }
   o << "};\n\n";
+  if (scheme_kind() == Scheme::nps) nps_workspace(o);
 }
 
 void Emitter::velocity_helpers(std::ostringstream& o) const {
@@ -296,9 +301,6 @@ void Emitter::loads_stage(std::ostringstream& o) const {
 }
 
 void Emitter::constraint_stage(std::ostringstream& o) const {
-  // ali3p factorizes S with a different diagonal shift for its tangent and
-  // its projections; the other schemes add kRegularization.
-  const bool shifted = scheme_kind() == Scheme::ali3p;
   o << "// (k, t) => (c.rows_*): constraint values, Jacobians and acceleration terms.\n"
     << "void constraint_rows(const Kinematics& k, double t, ConstraintSystem& c) noexcept {\n";
   if (blocks() == 0) o << "  (void)k;\n  (void)c;\n";
@@ -313,8 +315,50 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
     }
     o << ");\n";
   }
-  o << "}\n\n"
-    << "// (c.rows_*) => (c.mbt_*, c.L_*): M^-1 B^T, then S block by block in\n"
+  o << "}\n\n";
+  if (scheme_kind() != Scheme::nps) factorization(o);
+  o << "// (c, u) => (B u)\n"
+    << "Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  Rows y;\n";
+  if (blocks() == 0) o << "  (void)c;\n  (void)u;\n";
+  for (int ji = 0; ji < blocks(); ++ji) {
+    o << "  " << seg("y", ji) << " = ";
+    const auto mb = moving_bodies(ji);
+    for (size_t q = 0; q < mb.size(); ++q) {
+      o << (q ? " + " : "") << "c.rows_" << jname(ji) << "." << side(ji, mb[q]) << " * u[" << mb[q] << "]";
+    }
+    o << ";\n";
+  }
+  o << "  return y;\n}\n\n";
+  if (scheme_kind() != Scheme::nps) {
+    o << "// (c, lambda) => (u): u -= scale M^-1 B^T lambda\n"
+      << "void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,\n"
+      << "                                BodyVectors& u) noexcept {\n";
+    if (blocks() == 0) o << "  (void)c;\n  (void)lambda;\n  (void)scale;\n  (void)u;\n";
+    for (int ji = 0; ji < blocks(); ++ji) {
+      for (int b : moving_bodies(ji)) {
+        o << "  u[" << b << "] -= scale * (" << mbt(ji, b) << " * " << seg("lambda", ji) << ");\n";
+      }
+    }
+    o << "}\n\n";
+  }
+  o << "// (c) => (phi), (c) => (quad): stacked position residuals and acceleration terms.\n";
+  stacked(o, "phi");
+  stacked(o, "quad");
+  if (a_.rheonomic) stacked(o, "phi_t");
+  o << "// (c, u) => (phi_dot = B u + phi_t): velocity residuals.\n"
+    << "Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n";
+  if (a_.rheonomic) {
+    o << "  return jacobian_times(c, u) + stacked_phi_t(c);\n}\n\n";
+  } else {
+    o << "  return jacobian_times(c, u);  // no drivers: phi_t = 0\n}\n\n";
+  }
+}
+
+void Emitter::factorization(std::ostringstream& o) const {
+  // ali3p factorizes S with a different diagonal shift for its tangent and
+  // its projections; the other schemes add kRegularization.
+  const bool shifted = scheme_kind() == Scheme::ali3p;
+  o << "// (c.rows_*) => (c.mbt_*, c.L_*): M^-1 B^T, then S block by block in\n"
     << "// elimination order (" << a_.pattern.fill_blocks << " fill blocks); false if a pivot is not positive.\n"
     << "bool factorize(ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
     << ") noexcept {\n  bool positive = true;\n";
@@ -372,40 +416,6 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
     o << "    mbrt::solve_lower_transposed(" << L(k, k) << ", y);\n    " << seg("x", k) << " = y;\n  }\n";
   }
   o << "}\n\n";
-
-  o << "// (c, u) => (B u)\n"
-    << "Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  Rows y;\n";
-  if (blocks() == 0) o << "  (void)c;\n  (void)u;\n";
-  for (int ji = 0; ji < blocks(); ++ji) {
-    o << "  " << seg("y", ji) << " = ";
-    const auto mb = moving_bodies(ji);
-    for (size_t q = 0; q < mb.size(); ++q) {
-      o << (q ? " + " : "") << "c.rows_" << jname(ji) << "." << side(ji, mb[q]) << " * u[" << mb[q] << "]";
-    }
-    o << ";\n";
-  }
-  o << "  return y;\n}\n\n"
-    << "// (c, lambda) => (u): u -= scale M^-1 B^T lambda\n"
-    << "void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,\n"
-    << "                                BodyVectors& u) noexcept {\n";
-  if (blocks() == 0) o << "  (void)c;\n  (void)lambda;\n  (void)scale;\n  (void)u;\n";
-  for (int ji = 0; ji < blocks(); ++ji) {
-    for (int b : moving_bodies(ji)) {
-      o << "  u[" << b << "] -= scale * (" << mbt(ji, b) << " * " << seg("lambda", ji) << ");\n";
-    }
-  }
-  o << "}\n\n"
-    << "// (c) => (phi), (c) => (quad): stacked position residuals and acceleration terms.\n";
-  stacked(o, "phi");
-  stacked(o, "quad");
-  if (a_.rheonomic) stacked(o, "phi_t");
-  o << "// (c, u) => (phi_dot = B u + phi_t): velocity residuals.\n"
-    << "Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n";
-  if (a_.rheonomic) {
-    o << "  return jacobian_times(c, u) + stacked_phi_t(c);\n}\n\n";
-  } else {
-    o << "  return jacobian_times(c, u);  // no drivers: phi_t = 0\n}\n\n";
-  }
 }
 
 void Emitter::stacked(std::ostringstream& o, const std::string& member) const {
@@ -456,9 +466,15 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
     o << "};  // safe values\n";
   }
   const bool ali3p = scheme_kind() == Scheme::ali3p;
-  o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n"
-    << (ali3p ? "  factorize(c, Rows::Constant(kRegularization));\n" : "  factorize(c);\n")
-    << "  Loads l;\n  " << loads_call() << ";\n  constraint_forces(c, l, stacked_phi(c), s);\n";
+  const bool nps = scheme_kind() == Scheme::nps;
+  o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n";
+  if (nps) {
+    o << "  TreeSystem t;\n  factorize_tree(k, c, t);\n" << (nps_cuts() ? "  factorize_cut(c, t);\n" : "");
+  } else {
+    o << (ali3p ? "  factorize(c, Rows::Constant(kRegularization));\n" : "  factorize(c);\n");
+  }
+  o << "  Loads l;\n  " << loads_call() << ";\n  constraint_forces(" << (nps ? "c, t" : "c")
+    << ", l, stacked_phi(c), s);\n";
   if (ali3p) o << "  s.ali3p_lambda_star = s.lambda;\n";
   if (ali3p_weighted()) {
     o << "  const BodyVectors a = accelerations_of(s);\n"
@@ -526,7 +542,7 @@ std::string Emitter::source() const {
   o << "// Left out for this scene:";
   for (const std::string& s : a_.skipped) o << "\n//   " << s;
   if (a_.skipped.empty()) o << " nothing";
-  o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n#include <mbrt/reactions.hpp>\n#include <mbrt/runtime.hpp>\n\n"
+  o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n#include <mbrt/natural_partitioning.hpp>\n#include <mbrt/reactions.hpp>\n#include <mbrt/runtime.hpp>\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";
   constants(o);
   workspace_types(o);
@@ -540,7 +556,7 @@ std::string Emitter::source() const {
   o << "  k.vel = velocities_of(s);\n}\n\n";
   loads_stage(o);
   constraint_stage(o);
-  mass_products(o);
+  if (scheme_kind() != Scheme::nps) mass_products(o);
   if (scheme_kind() == Scheme::ali3p) {
     ali3p_stages(o);
   } else {

@@ -8,6 +8,7 @@ namespace mbrt::codegen {
 std::string Emitter::stabilization_term() const {
   switch (scheme_kind()) {
     case Scheme::pcst:
+    case Scheme::nps:
       return "(2.0 / h) * (velocity_residual(c, generalized_velocities(s)) + kStabilization * phi)";
     case Scheme::baumgarte:
       return "(2.0 * kBaumgarteAlpha) * velocity_residual(c, generalized_velocities(s)) + "
@@ -18,7 +19,7 @@ std::string Emitter::stabilization_term() const {
   return "";
 }
 
-void Emitter::staggered_stages(std::ostringstream& o) const {
+void Emitter::explicit_stage_function(std::ostringstream& o) const {
   o << R"(// (s, accelerations at t) => (s): explicit stage, central difference.
 // Half kick of the velocities, then positions and Euler parameters to t + h
 // with the half-step velocities (docs/staggered-pcst.md, eqs. 1-3).
@@ -39,6 +40,14 @@ void explicit_stage(State& s) noexcept {
 }
 
 )";
+}
+
+void Emitter::staggered_stages(std::ostringstream& o) const {
+  explicit_stage_function(o);
+  if (scheme_kind() == Scheme::nps) {
+    nps_stages(o);
+    return;
+  }
   const std::string stab = stabilization_term();
   switch (scheme_kind()) {
     case Scheme::pcst:
@@ -60,6 +69,8 @@ void implicit_stage(const ConstraintSystem& c, const Loads& l, const BodyVectors
 // (1 - alpha h) phi. quad was evaluated at the predicted half-step velocity.
 )";
       break;
+    case Scheme::nps:
+    case Scheme::ali3p: break;
     case Scheme::baumgarte:
       o << R"(// (c, l, phi, s) => (s.lambda, accelerations): index-1 multipliers with
 // Baumgarte's terms, phi'' + 2 alpha phi' + beta^2 phi = 0:
@@ -116,7 +127,15 @@ void Emitter::staggered_step(std::ostringstream& o) const {
   const BodyVectors u_half = generalized_velocities(s);
 
 )";
-  if (scheme_kind() == Scheme::pcst) {
+  if (scheme_kind() == Scheme::pcst || scheme_kind() == Scheme::nps) {
+    // staggered-nps eliminates the tree's rows and factorizes the cut rows
+    // where staggered-pcst factorizes S; the stages are the same.
+    const bool nps = scheme_kind() == Scheme::nps;
+    const std::string factorize =
+        nps ? std::string("TreeSystem t;\n  bool positive = factorize_tree(k, c, t)") +
+                  (nps_cuts() ? ";\n  positive = factorize_cut(c, t) && positive" : "")
+            : "bool positive = factorize(c)";
+    const std::string system = nps ? "c, t" : "c";
     o << R"(  // Constraint terms at the new positions, factorized once per step. The
   // quadratic terms are taken at the predicted next half-step velocity
   // u_half + h a_old, which the next explicit stage will drift with.
@@ -128,7 +147,7 @@ void Emitter::staggered_step(std::ostringstream& o) const {
   k.vel = velocities_of(s);
   ConstraintSystem c;
   constraint_rows(k, s.t, c);
-  bool positive = factorize(c);
+  )" << factorize << R"(;
 
   // Implicit stages: the first evaluates velocity-dependent loads at the
   // predicted end-of-step velocities u_half + h/2 a_old, the next ones at the
@@ -139,10 +158,10 @@ void Emitter::staggered_step(std::ostringstream& o) const {
     set_velocities(u, s);
     k.vel = velocities_of(s);
     )" << loads_call() << R"(;
-    implicit_stage(c, l, u_half, u);
+    implicit_stage()" << system << R"(, l, u_half, u);
   }
   set_velocities(u, s);
-  constraint_forces(c, l, stacked_phi(c), s);
+  constraint_forces()" << system << R"(, l, stacked_phi(c), s);
 )";
   } else {
     o << R"(  // Constraint terms at the new positions, factorized once per step, with

@@ -1,7 +1,7 @@
 // The C++ emitter's shared state and the pieces every scheme uses. The
 // definitions are split by concept: emit_cpp.cpp (model data, kinematics,
 // loads, constraint system, diagnostics), emit_staggered.cpp (staggered-pcst,
-// baumgarte, blajer), emit_ali3p.cpp (ali3p).
+// baumgarte, blajer), emit_nps.cpp (staggered-nps), emit_ali3p.cpp (ali3p).
 #pragma once
 
 #include <iomanip>
@@ -95,6 +95,7 @@ class Emitter {
   void velocity_helpers(std::ostringstream& o) const;
   void loads_stage(std::ostringstream& o) const;
   void constraint_stage(std::ostringstream& o) const;
+  void factorization(std::ostringstream& o) const;  // factorize(c) and solve(c, x) over the pattern of S
   void stacked(std::ostringstream& o, const std::string& member) const;  // Rows stacked_<member>(c)
   std::string seg(const std::string& v, int j) const;
   // Expression for block S(i, j) = sum over shared moving bodies of B_i M^-1 B_j^T.
@@ -106,8 +107,9 @@ class Emitter {
   void diagnostics(std::ostringstream& o) const;
   void reactions_function(std::ostringstream& o) const;
 
-  enum class Scheme { pcst, baumgarte, blajer, ali3p };
+  enum class Scheme { pcst, nps, baumgarte, blajer, ali3p };
   Scheme scheme_kind() const {
+    if (m_.solver.scheme == "staggered-nps") return Scheme::nps;
     if (m_.solver.scheme == "baumgarte") return Scheme::baumgarte;
     if (m_.solver.scheme == "blajer") return Scheme::blajer;
     if (m_.solver.scheme == "ali3p") return Scheme::ali3p;
@@ -129,8 +131,20 @@ class Emitter {
 
   // emit_staggered.cpp
   std::string stabilization_term() const;  // of S lambda = B M^-1 F + quad + stabilization
+  void explicit_stage_function(std::ostringstream& o) const;
   void staggered_stages(std::ostringstream& o) const;
   void staggered_step(std::ostringstream& o) const;
+
+  // emit_nps.cpp: the tree elimination (a_.tree) and the cut rows.
+  bool nps_cuts() const { return a_.tree.cut_rows > 0; }
+  std::vector<std::string> null_space_columns(const TreeBody& tb) const;
+  std::string h_transpose_times(const TreeBody& tb, const std::string& x) const;
+  std::string h_times(const TreeBody& tb, const std::string& z) const;
+  void nps_workspace(std::ostringstream& o) const;
+  void nps_factorize(std::ostringstream& o) const;
+  void nps_tree_solve(std::ostringstream& o) const;
+  void nps_cut_rows(std::ostringstream& o) const;
+  void nps_stages(std::ostringstream& o) const;
 
   // emit_ali3p.cpp. Generalized-alpha keeps M^-1 (B^T lambda - F) of the last step.
   bool ali3p_weighted() const { return scheme_kind() == Scheme::ali3p && a_.ali3p.delta_f != 0.0; }

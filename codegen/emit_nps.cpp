@@ -1,0 +1,279 @@
+// Step emission for staggered-nps (docs/staggered-nps.md): the staggered
+// explicit-implicit stages of staggered-pcst, with the spanning tree's joints
+// eliminated body by body through their explicit null spaces and the cut rows
+// (loop closures, drivers, contacts) left to penalty-regularized multipliers.
+#include "emitter.hpp"
+
+namespace mbrt::codegen {
+
+namespace {
+std::string idx(int i) { return std::to_string(i); }
+}  // namespace
+
+// Expressions of the null-space columns of the joint that carries tb, in the
+// child's body axes: turns about and slides along the joint's own directions.
+std::vector<std::string> Emitter::null_space_columns(const TreeBody& tb) const {
+  const std::string f = jname(tb.joint) + "_frame.";
+  const std::string me = tb.child_is_body2 ? "2" : "1";
+  const std::string other = tb.child_is_body2 ? "1" : "2";
+  const std::string p = pose(tb.body);
+  const std::string s = f + "s" + me, a = f + "a" + me, b = f + "b" + me, c = f + "c" + me;
+  auto turn = [&](const std::string& e) { return "mbrt::turn_about(" + p + ", " + s + ", " + e + ")"; };
+  auto slide = [&](const std::string& e) { return "mbrt::slide_along(" + p + ", " + e + ")"; };
+  switch (m_.joints[static_cast<size_t>(tb.joint)].type) {
+    case JointType::revolute: return {turn(a)};
+    case JointType::prismatic: return {slide(a)};
+    case JointType::cylindrical: return {turn(a), slide(a)};
+    case JointType::spherical:
+      return {turn("mbrt::Vec3::UnitX()"), turn("mbrt::Vec3::UnitY()"), turn("mbrt::Vec3::UnitZ()")};
+    case JointType::universal:
+      // The parent's axis, carried into the child's axes.
+      return {turn(a), turn("mbrt::Vec3(" + p + ".R.transpose() * (" + pose(tb.parent) + ".R * " + f + "a" + other +
+                            "))")};
+    case JointType::planar: return {turn(a), slide(b), slide(c)};
+    case JointType::screw: return {turn(a) + " + " + f + "pitch * " + slide(a)};
+    default: return {};  // fixed
+  }
+}
+
+// H^T x, H z and M H for one tree body; a free body's H is the identity (a
+// particle's: the translations).
+std::string Emitter::h_transpose_times(const TreeBody& tb, const std::string& x) const {
+  if (tb.joint >= 0) return "t.H_" + idx(tb.body) + ".transpose() * " + x;
+  return tb.dofs == 6 ? x : "mbrt::Vec3(" + x + ".head<3>())";
+}
+
+std::string Emitter::h_times(const TreeBody& tb, const std::string& z) const {
+  if (tb.joint >= 0) return "t.H_" + idx(tb.body) + " * " + z;
+  return tb.dofs == 6 ? z : "(mbrt::Vec6() << " + z + ", mbrt::Vec3::Zero()).finished()";
+}
+
+void Emitter::nps_workspace(std::ostringstream& o) const {
+  const TreePlan& tree = a_.tree;
+  o << "// The tree elimination of the step's positions (docs/staggered-nps.md):\n"
+    << "// per body the articulated inertia IA, the null space H of its joint,\n"
+    << "// L L^T = H^T IA H, W = IA H L^-T, the transfer X from its parent, and\n"
+    << "// Q = M^-1 B^T G^-T with G G^T = B M^-1 B^T for its joint's rows.\n"
+    << "struct TreeSystem {\n";
+  for (const TreeBody& tb : tree.order) {
+    const std::string i = idx(tb.body);
+    o << "  mbrt::Mat6 IA_" << i << ";  // " << body(tb.body).name << "\n";
+    if (tb.joint >= 0 && tb.dofs > 0) o << "  " << block_type(6, tb.dofs) << " H_" << i << ";\n";
+    if (tb.dofs > 0) o << "  " << block_type(tb.dofs, tb.dofs) << " L_" << i << ";\n";
+    if (tb.parent != kGround) {
+      o << "  mbrt::Mat6 X_" << i << ";\n";
+      if (tb.dofs > 0) o << "  " << block_type(6, tb.dofs) << " W_" << i << ";\n";
+    }
+    if (tb.joint >= 0) {
+      o << "  " << block_type(6, rows(tb.joint)) << " Q_" << i << ";\n"
+        << "  " << block_type(rows(tb.joint), rows(tb.joint)) << " G_" << i << ";\n";
+    }
+  }
+  if (tree.cut_rows > 0) o << "  Eigen::Matrix<double, kCutRows, kCutRows> S_cut;  // Cholesky factor\n";
+  o << "};\n\n";
+}
+
+void Emitter::nps_factorize(std::ostringstream& o) const {
+  const TreePlan& tree = a_.tree;
+  o << "// (k, c) => (t): the tree elimination, leaves first. IA of a body is its\n"
+    << "// mass plus X^T (IA - W W^T) X of each child; false if a pivot is not positive.\n"
+    << "bool factorize_tree(const Kinematics& k, const ConstraintSystem& c, TreeSystem& t) noexcept {\n"
+    << "  bool positive = true;\n";
+  if (blocks() == 0) o << "  (void)c;\n";
+  for (const TreeBody& tb : tree.order) {
+    o << "  t.IA_" << tb.body << " = mbrt::mass_matrix(" << mass_of(tb.body) << ");\n";
+  }
+  for (size_t n = tree.order.size(); n-- > 0;) {
+    const TreeBody& tb = tree.order[n];
+    const std::string i = idx(tb.body);
+    o << "  {  // " << body(tb.body).name
+      << (tb.joint >= 0 ? ", joint " + jname(tb.joint) + " to " + m_.body_name(tb.parent) : ", free") << "\n";
+    if (tb.joint >= 0) {
+      const std::vector<std::string> cols = null_space_columns(tb);
+      for (size_t q = 0; q < cols.size(); ++q) o << "    t.H_" << i << ".col(" << q << ") = " << cols[q] << ";\n";
+    }
+    if (tb.joint >= 0 && tb.dofs > 0) {
+      o << "    const " << block_type(6, tb.dofs) << " U = t.IA_" << i << " * t.H_" << i << ";\n"
+        << "    t.L_" << i << " = t.H_" << i << ".transpose() * U;\n";
+    } else if (tb.joint < 0) {  // a free body: H = I (a particle's: the translations)
+      o << "    t.L_" << i << " = t.IA_" << i << (tb.dofs == 6 ? "" : ".topLeftCorner<3, 3>()") << ";\n";
+    }
+    if (tb.dofs > 0) o << "    positive = mbrt::cholesky_in_place(t.L_" << i << ") && positive;\n";
+    if (tb.parent != kGround) {
+      const std::string p = idx(tb.parent);
+      o << "    t.X_" << i << " = mbrt::rigid_transfer(" << pose(tb.parent) << ", " << pose(tb.body) << ");\n";
+      if (tb.dofs > 0) {
+        o << "    t.W_" << i << " = U;\n    mbrt::solve_right_lower_transposed(t.L_" << i << ", t.W_" << i << ");\n"
+          << "    t.IA_" << p << " += t.X_" << i << ".transpose() * (t.IA_" << i << " - t.W_" << i << " * t.W_" << i
+          << ".transpose()) * t.X_" << i << ";\n";
+      } else {
+        o << "    t.IA_" << p << " += t.X_" << i << ".transpose() * t.IA_" << i << " * t.X_" << i << ";\n";
+      }
+    }
+    if (tb.joint >= 0) {
+      const std::string J = "c.rows_" + jname(tb.joint) + "." + (tb.child_is_body2 ? "J2" : "J1");
+      o << "    t.Q_" << i << " = mbrt::inverse_mass_times_transpose(" << mass_of(tb.body) << ", " << J << ");\n"
+        << "    t.G_" << i << " = " << J << " * t.Q_" << i << ";\n"
+        << "    positive = mbrt::cholesky_in_place(t.G_" << i << ") && positive;\n"
+        << "    mbrt::solve_right_lower_transposed(t.G_" << i << ", t.Q_" << i << ");\n";
+    }
+    o << "  }\n";
+  }
+  o << "  return positive;\n}\n\n";
+}
+
+void Emitter::nps_tree_solve(std::ostringstream& o) const {
+  const TreePlan& tree = a_.tree;
+  o << "// (t, force, target) => (acc, tree rows of lambda): the body accelerations\n"
+    << "// u' = D z' + a_p with B u' = target on the tree rows and D^T (M u' - force)\n"
+    << "// = 0, and the tree joints' multipliers from the force each one carries.\n"
+    << "// a_p = Q G^-1 target is a particular solution per joint. Leaves first,\n"
+    << "// then from the roots.\n"
+    << "void tree_solve(const TreeSystem& t, const BodyVectors& force, const Rows& target, BodyVectors& acc,\n"
+    << "                Rows& lambda) noexcept {\n"
+    << "  BodyVectors g;  // IA a_p - force + what the children pass on\n"
+    << "  BodyVectors part;  // a_p\n"
+    << "  for (int b = 0; b < kBodies; ++b) {\n    g[b] = -force[b];\n    part[b].setZero();\n  }\n";
+  if (blocks() == 0) o << "  (void)target;\n  (void)lambda;\n";
+  for (const TreeBody& tb : tree.order) {
+    if (tb.dofs > 0) o << "  " << rows_type(tb.dofs) << " y_" << tb.body << ";  // L^-1 H^T g\n";
+  }
+  for (size_t n = tree.order.size(); n-- > 0;) {
+    const TreeBody& tb = tree.order[n];
+    const std::string i = idx(tb.body);
+    o << "  {  // " << body(tb.body).name << "\n";
+    if (tb.joint >= 0) {
+      o << "    " << rows_type(rows(tb.joint)) << " x = " << seg("target", tb.joint) << ";\n"
+        << "    mbrt::solve_lower(t.G_" << i << ", x);\n"
+        << "    part[" << i << "] = t.Q_" << i << " * x;\n"
+        << "    g[" << i << "] += t.IA_" << i << " * part[" << i << "];\n";
+    }
+    if (tb.dofs > 0) {
+      o << "    y_" << i << " = " << h_transpose_times(tb, "g[" + i + "]") << ";\n"
+        << "    mbrt::solve_lower(t.L_" << i << ", y_" << i << ");\n";
+    }
+    if (tb.parent != kGround) {
+      o << "    g[" << tb.parent << "] += t.X_" << i << ".transpose() * "
+        << (tb.dofs > 0 ? "(g[" + i + "] - t.W_" + i + " * y_" + i + ")" : "g[" + i + "]") << ";\n";
+    }
+    o << "  }\n";
+  }
+  for (const TreeBody& tb : tree.order) {
+    const std::string i = idx(tb.body);
+    o << "  {  // " << body(tb.body).name << "\n";
+    if (tb.parent != kGround) {
+      o << "    const mbrt::Vec6 carried = t.X_" << i << " * acc[" << tb.parent << "];\n"
+        << "    acc[" << i << "] = carried + part[" << i << "];\n";
+    } else {
+      o << "    acc[" << i << "] = part[" << i << "];\n";
+    }
+    if (tb.dofs > 0) {
+      o << "    " << rows_type(tb.dofs) << " z = -y_" << i;
+      if (tb.parent != kGround) o << " - t.W_" << i << ".transpose() * carried";
+      o << ";\n    mbrt::solve_lower_transposed(t.L_" << i << ", z);\n"
+        << "    acc[" << i << "] += " << h_times(tb, "z") << ";\n";
+    }
+    if (tb.joint >= 0) {
+      // The joint's force on the child, -B^T lambda = IA (u' - a_p) + g.
+      o << "    " << rows_type(rows(tb.joint)) << " l = -(t.Q_" << i << ".transpose() * (t.IA_" << i << " * (acc[" << i
+        << "] - part[" << i << "]) + g[" << i << "]));\n"
+        << "    mbrt::solve_lower_transposed(t.G_" << i << ", l);\n"
+        << "    " << seg("lambda", tb.joint) << " = l;\n";
+    }
+    o << "  }\n";
+  }
+  o << "}\n\n";
+}
+
+void Emitter::nps_cut_rows(std::ostringstream& o) const {
+  const TreePlan& tree = a_.tree;
+  o << "using CutRows = Eigen::Matrix<double, kCutRows, 1>;\n\n"
+    << "// (x) => (the cut rows of x, stacked)\n"
+    << "CutRows cut_rows_of(const Rows& x) noexcept {\n  CutRows y;\n";
+  int offset = 0;
+  for (int j : tree.cut_blocks) {
+    o << "  y.segment<" << rows(j) << ">(" << offset << ") = " << seg("x", j) << ";  // " << jname(j) << "\n";
+    offset += rows(j);
+  }
+  o << "  return y;\n}\n\n"
+    << "// (c, mu) => (B_cut^T mu per body)\n"
+    << "BodyVectors cut_forces(const ConstraintSystem& c, const CutRows& mu) noexcept {\n  BodyVectors f;\n"
+    << "  for (mbrt::Vec6& x : f) x.setZero();\n";
+  offset = 0;
+  for (int j : tree.cut_blocks) {
+    for (int b : moving_bodies(j)) {
+      o << "  f[" << b << "] += c.rows_" << jname(j) << "." << side(j, b) << ".transpose() * mu.segment<" << rows(j)
+        << ">(" << offset << ");\n";
+    }
+    offset += rows(j);
+  }
+  o << "  return f;\n}\n\n"
+    << "// (c, t) => (t.S_cut): S_cut = B_cut T B_cut^T + kRegularization I with T\n"
+    << "// the tree's response to a force, one tree solve per cut row.\n"
+    << "bool factorize_cut(const ConstraintSystem& c, TreeSystem& t) noexcept {\n"
+    << "  Rows lambda = Rows::Zero();\n  BodyVectors acc;\n"
+    << "  for (int r = 0; r < kCutRows; ++r) {\n"
+    << "    tree_solve(t, cut_forces(c, CutRows::Unit(r)), Rows::Zero(), acc, lambda);\n"
+    << "    t.S_cut.col(r) = cut_rows_of(jacobian_times(c, acc));\n  }\n"
+    << "  t.S_cut.diagonal().array() += kRegularization;\n"
+    << "  return mbrt::cholesky_in_place(t.S_cut);\n}\n\n"
+    << "// (t, x) => (x): x := S_cut^-1 x\n"
+    << "void solve_cut(const TreeSystem& t, CutRows& x) noexcept {\n"
+    << "  mbrt::solve_lower(t.S_cut, x);\n  mbrt::solve_lower_transposed(t.S_cut, x);\n}\n\n"
+    << "// (t, c, mu, u) => (u): u -= T B_cut^T mu\n"
+    << "void subtract_cut_response(const TreeSystem& t, const ConstraintSystem& c, const CutRows& mu,\n"
+    << "                           BodyVectors& u) noexcept {\n"
+    << "  Rows unused = Rows::Zero();\n  BodyVectors du;\n"
+    << "  tree_solve(t, cut_forces(c, mu), Rows::Zero(), du, unused);\n"
+    << "  for (int b = 0; b < kBodies; ++b) u[b] -= du[b];\n}\n\n";
+}
+
+void Emitter::nps_stages(std::ostringstream& o) const {
+  const bool cuts = a_.tree.cut_rows > 0;
+  nps_factorize(o);
+  nps_tree_solve(o);
+  if (cuts) nps_cut_rows(o);
+  o << "// (c, t, l, u_half) => (u): implicit stage. u is the M-orthogonal projection\n"
+    << "// of u_half + h/2 M^-1 F onto the tree's velocity constraints (a tree solve\n"
+    << "// with the momentum as force), then onto the cut rows, regularized as in\n"
+    << "// staggered-pcst.\n"
+    << "void implicit_stage(const ConstraintSystem& c, const TreeSystem& t, const Loads& l, const BodyVectors& u_half,\n"
+    << "                    BodyVectors& u) noexcept {\n"
+    << "  BodyVectors momentum;\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    o << "  momentum[" << i << "] = mbrt::mass_times(" << mass_of(static_cast<int>(i)) << ", u_half[" << i
+      << "]) + (0.5 * h) * mbrt::as_vector(l.w[" << i << "]);\n";
+  }
+  o << "  Rows unused = Rows::Zero();\n  tree_solve(t, momentum, Rows::Zero(), u, unused);\n";
+  if (cuts) {
+    o << "  CutRows mu = cut_rows_of(velocity_residual(c, u));\n  solve_cut(t, mu);\n"
+      << "  subtract_cut_response(t, c, mu, u);\n";
+  } else {
+    o << "  (void)c;\n";
+  }
+  o << "}\n\n"
+    << "// (c, t, l, phi, s) => (s.lambda, accelerations): the accelerations meet\n"
+    << "// B u' + quad + (2/h) (B u + alpha phi) = 0 on every row (eq. 7 of\n"
+    << "// docs/staggered-pcst.md): exactly on the tree rows, through the\n"
+    << "// regularized S_cut on the cut rows.\n"
+    << "void constraint_forces(const ConstraintSystem& c, const TreeSystem& t, const Loads& l, const Rows& phi,\n"
+    << "                       State& s) noexcept {\n"
+    << "  const Rows target = -(stacked_quad(c) + (2.0 / h) * (velocity_residual(c, generalized_velocities(s)) +\n"
+    << "                                                        kStabilization * phi));\n"
+    << "  BodyVectors f;\n  for (int b = 0; b < kBodies; ++b) f[b] = mbrt::as_vector(l.w[b]);\n"
+    << "  BodyVectors a;\n  tree_solve(t, f, target, a, s.lambda);\n";
+  if (cuts) {
+    o << "  CutRows lambda_cut = cut_rows_of(jacobian_times(c, a) - target);\n  solve_cut(t, lambda_cut);\n"
+      << "  const BodyVectors f_cut = cut_forces(c, lambda_cut);\n"
+      << "  for (int b = 0; b < kBodies; ++b) f[b] -= f_cut[b];\n"
+      << "  tree_solve(t, f, target, a, s.lambda);\n";
+    int offset = 0;
+    for (int j : a_.tree.cut_blocks) {
+      o << "  " << seg("s.lambda", j) << " = lambda_cut.segment<" << rows(j) << ">(" << offset << ");\n";
+      offset += rows(j);
+    }
+  }
+  o << "  set_accelerations(a, s);\n}\n\n";
+}
+
+}  // namespace mbrt::codegen

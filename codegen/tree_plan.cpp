@@ -1,0 +1,75 @@
+#include "tree_plan.hpp"
+
+#include <string>
+
+#include "analysis.hpp"
+
+namespace mbrt::codegen {
+
+bool is_tree_joint(JointType type) {
+  switch (type) {
+    case JointType::spherical:
+    case JointType::revolute:
+    case JointType::universal:
+    case JointType::cylindrical:
+    case JointType::prismatic:
+    case JointType::fixed:
+    case JointType::screw:
+    case JointType::planar: return true;
+    default: return false;
+  }
+}
+
+int tree_joint_dofs(JointType type) { return 6 - constraint_rows(type); }
+
+TreePlan plan_tree(const Model& model, const std::vector<ConstraintBlock>& blocks) {
+  const size_t bodies = model.bodies.size();
+  std::vector<bool> placed(bodies, false), used(blocks.size(), false);
+  TreePlan t;
+  auto in_tree = [&](int b) { return b == kGround || placed[static_cast<size_t>(b)]; };
+  auto place = [&](TreeBody tb) {
+    placed[static_cast<size_t>(tb.body)] = true;
+    t.order.push_back(tb);
+  };
+  std::vector<int> frontier = {kGround};
+  while (t.order.size() < bodies) {
+    // Children of the frontier bodies, in joint order.
+    for (size_t f = 0; f < frontier.size(); ++f) {
+      const int parent = frontier[f];
+      for (size_t j = 0; j < model.joints.size(); ++j) {
+        const Joint& joint = model.joints[j];
+        if (used[j] || !is_tree_joint(joint.type)) continue;
+        const bool rigid1 = joint.body1 == kGround || !model.bodies[static_cast<size_t>(joint.body1)].particle;
+        const bool rigid2 = joint.body2 == kGround || !model.bodies[static_cast<size_t>(joint.body2)].particle;
+        if (!rigid1 || !rigid2) continue;
+        const int child = joint.body1 == parent ? joint.body2 : joint.body2 == parent ? joint.body1 : kGround - 1;
+        if (child < 0 || in_tree(child)) continue;
+        used[j] = true;
+        place({child, parent, static_cast<int>(j), child == joint.body2, tree_joint_dofs(joint.type)});
+        frontier.push_back(child);
+      }
+    }
+    if (t.order.size() == bodies) break;
+    // A body no tree joint reaches moves freely; its own subtree hangs from it.
+    for (size_t b = 0; b < bodies; ++b) {
+      if (placed[b]) continue;
+      place({static_cast<int>(b), kGround, -1, true, model.bodies[b].particle ? 3 : 6});
+      break;
+    }
+    frontier.assign(1, t.order.back().body);
+  }
+  for (size_t j = 0; j < blocks.size(); ++j) {
+    if (used[j]) continue;
+    t.cut_blocks.push_back(static_cast<int>(j));
+    t.cut_rows += blocks[j].rows;
+  }
+  if (t.cut_rows > kMaxCutRows) {
+    throw ModelError({model.file, 0, 0}, "solver.scheme",
+                     "staggered-nps closes loops with a dense system of cut-joint rows, at most " +
+                         std::to_string(kMaxCutRows) + "; this model has " + std::to_string(t.cut_rows) +
+                         " (use staggered-pcst)");
+  }
+  return t;
+}
+
+}  // namespace mbrt::codegen

@@ -1,0 +1,81 @@
+// Pieces of the staggered-nps scheme (docs/staggered-nps.md): the explicit
+// null space of a tree joint's constraint Jacobian, built body by body from
+// the joint type, and the 6 x 6 mass matrices the tree elimination works on.
+// Velocities are u = [v (world); w (body axes)] as everywhere in the step.
+#pragma once
+
+#include "mbrt/forces.hpp"
+
+namespace mbrt {
+
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+inline Mat6 mass_matrix(const PointMass& b) noexcept {
+  Mat6 m = Mat6::Zero();
+  m.topLeftCorner<3, 3>().diagonal().setConstant(b.m);
+  return m;
+}
+
+inline Mat6 mass_matrix(const PrincipalInertia& b) noexcept {
+  Mat6 m = Mat6::Zero();
+  m.topLeftCorner<3, 3>().diagonal().setConstant(b.m);
+  m.bottomRightCorner<3, 3>().diagonal() = b.J;
+  return m;
+}
+
+inline Mat6 mass_matrix(const FullInertia& b) noexcept {
+  Mat6 m = Mat6::Zero();
+  m.topLeftCorner<3, 3>().diagonal().setConstant(b.m);
+  m.bottomRightCorner<3, 3>() = b.J;
+  return m;
+}
+
+// M u, the momentum of one body.
+inline Vec6 mass_times(const PointMass& b, const Vec6& u) noexcept {
+  Vec6 p;
+  p << b.m * u.head<3>(), Vec3::Zero();
+  return p;
+}
+
+template <class Inertia>
+inline Vec6 mass_times(const Inertia& b, const Vec6& u) noexcept {
+  Vec6 p;
+  p << b.m * u.head<3>(), inertia_times(b, u.tail<3>());
+  return p;
+}
+
+inline Vec6 as_vector(const Wrench& w) noexcept {
+  Vec6 f;
+  f << w.f, w.tau;
+  return f;
+}
+
+// X with u_child = X u_parent when the child moves rigidly with its parent:
+// w_child = R_c^T R_p w_p, v_child = v_p + R_p (w_p x rho), rho the child's
+// COM in parent axes. Every scleronomic joint allows this motion, so
+// B_parent + B_child X = 0 for any of them.
+inline Mat6 rigid_transfer(const BodyPose& parent, const BodyPose& child) noexcept {
+  const Vec3 rho = parent.R.transpose() * (child.r - parent.r);
+  Mat6 x = Mat6::Zero();
+  x.topLeftCorner<3, 3>().setIdentity();
+  x.topRightCorner<3, 3>() = -parent.R * skew(rho);
+  x.bottomRightCorner<3, 3>() = child.R.transpose() * parent.R;
+  return x;
+}
+
+// Null-space columns of a joint's child-side Jacobian. A turn about the
+// body-axes unit vector e through the body point s (s from the COM) moves
+// the COM with R (s x e); a slide along e moves it with R e.
+inline Vec6 turn_about(const BodyPose& child, const Vec3& s, const Vec3& e) noexcept {
+  Vec6 h;
+  h << child.R * s.cross(e), e;
+  return h;
+}
+
+inline Vec6 slide_along(const BodyPose& child, const Vec3& e) noexcept {
+  Vec6 h;
+  h << child.R * e, Vec3::Zero();
+  return h;
+}
+
+}  // namespace mbrt
