@@ -48,6 +48,23 @@ std::string Emitter::h_times(const TreeBody& tb, const std::string& z) const {
   return tb.dofs == 6 ? z : "(mbrt::Vec6() << " + z + ", mbrt::Vec3::Zero()).finished()";
 }
 
+bool Emitter::tree_leaf(const TreeBody& tb) const {
+  for (const TreeBody& other : a_.tree.order) {
+    if (other.parent == tb.body) return false;
+  }
+  return true;
+}
+
+// IA x; a leaf's articulated inertia is its mass matrix, which is sparse.
+std::string Emitter::ia_times(const TreeBody& tb, const std::string& x) const {
+  if (tree_leaf(tb)) return "mbrt::mass_times(" + mass_of(tb.body) + ", " + x + ")";
+  return "t.IA_" + idx(tb.body) + " * " + x;
+}
+
+std::string Emitter::ia_matrix(const TreeBody& tb) const {
+  return tree_leaf(tb) ? "mbrt::mass_matrix(" + mass_of(tb.body) + ")" : "t.IA_" + idx(tb.body);
+}
+
 void Emitter::nps_workspace(std::ostringstream& o) const {
   const TreePlan& tree = a_.tree;
   o << "// The tree elimination of the step's positions (docs/staggered-nps.md):\n"
@@ -57,7 +74,8 @@ void Emitter::nps_workspace(std::ostringstream& o) const {
     << "struct TreeSystem {\n";
   for (const TreeBody& tb : tree.order) {
     const std::string i = idx(tb.body);
-    o << "  mbrt::Mat6 IA_" << i << ";  // " << body(tb.body).name << "\n";
+    o << "  // " << body(tb.body).name << "\n";
+    if (!tree_leaf(tb)) o << "  mbrt::Mat6 IA_" << i << ";\n";
     if (tb.joint >= 0 && tb.dofs > 0) o << "  " << block_type(6, tb.dofs) << " H_" << i << ";\n";
     if (tb.dofs > 0) o << "  " << block_type(tb.dofs, tb.dofs) << " L_" << i << ";\n";
     if (tb.parent != kGround) {
@@ -81,7 +99,7 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
     << "  bool positive = true;\n";
   if (blocks() == 0) o << "  (void)c;\n";
   for (const TreeBody& tb : tree.order) {
-    o << "  t.IA_" << tb.body << " = mbrt::mass_matrix(" << mass_of(tb.body) << ");\n";
+    if (!tree_leaf(tb)) o << "  t.IA_" << tb.body << " = mbrt::mass_matrix(" << mass_of(tb.body) << ");\n";
   }
   for (size_t n = tree.order.size(); n-- > 0;) {
     const TreeBody& tb = tree.order[n];
@@ -93,10 +111,12 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
       for (size_t q = 0; q < cols.size(); ++q) o << "    t.H_" << i << ".col(" << q << ") = " << cols[q] << ";\n";
     }
     if (tb.joint >= 0 && tb.dofs > 0) {
-      o << "    const " << block_type(6, tb.dofs) << " U = t.IA_" << i << " * t.H_" << i << ";\n"
+      o << "    const " << block_type(6, tb.dofs) << " U = "
+        << (tree_leaf(tb) ? "mbrt::mass_times_columns(" + mass_of(tb.body) + ", t.H_" + i + ")" : "t.IA_" + i + " * t.H_" + i)
+        << ";\n"
         << "    t.L_" << i << " = t.H_" << i << ".transpose() * U;\n";
     } else if (tb.joint < 0) {  // a free body: H = I (a particle's: the translations)
-      o << "    t.L_" << i << " = t.IA_" << i << (tb.dofs == 6 ? "" : ".topLeftCorner<3, 3>()") << ";\n";
+      o << "    t.L_" << i << " = " << ia_matrix(tb) << (tb.dofs == 6 ? "" : ".topLeftCorner<3, 3>()") << ";\n";
     }
     if (tb.dofs > 0) o << "    positive = mbrt::cholesky_in_place(t.L_" << i << ") && positive;\n";
     if (tb.parent != kGround) {
@@ -104,10 +124,10 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
       o << "    t.X_" << i << " = mbrt::rigid_transfer(" << pose(tb.parent) << ", " << pose(tb.body) << ");\n";
       if (tb.dofs > 0) {
         o << "    t.W_" << i << " = U;\n    mbrt::solve_right_lower_transposed(t.L_" << i << ", t.W_" << i << ");\n"
-          << "    t.IA_" << p << " += t.X_" << i << ".transpose() * (t.IA_" << i << " - t.W_" << i << " * t.W_" << i
-          << ".transpose()) * t.X_" << i << ";\n";
+          << "    t.IA_" << p << " += t.X_" << i << ".transpose() * (" << ia_matrix(tb) << " - t.W_" << i << " * t.W_"
+          << i << ".transpose()) * t.X_" << i << ";\n";
       } else {
-        o << "    t.IA_" << p << " += t.X_" << i << ".transpose() * t.IA_" << i << " * t.X_" << i << ";\n";
+        o << "    t.IA_" << p << " += t.X_" << i << ".transpose() * " << ia_matrix(tb) << " * t.X_" << i << ";\n";
       }
     }
     if (tb.joint >= 0) {
@@ -122,19 +142,31 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
   o << "  return positive;\n}\n\n";
 }
 
-void Emitter::nps_tree_solve(std::ostringstream& o) const {
+// tree_solve with targets gives the particular parts and the multipliers;
+// tree_response (targets zero) only the accelerations, for projections and
+// the cut rows.
+void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
   const TreePlan& tree = a_.tree;
-  o << "// (t, force, target) => (acc, tree rows of lambda): the body accelerations\n"
-    << "// u' = D z' + a_p with B u' = target on the tree rows and D^T (M u' - force)\n"
-    << "// = 0, and the tree joints' multipliers from the force each one carries.\n"
-    << "// a_p = Q G^-1 target is a particular solution per joint. Leaves first,\n"
-    << "// then from the roots.\n"
-    << "void tree_solve(const TreeSystem& t, const BodyVectors& force, const Rows& target, BodyVectors& acc,\n"
-    << "                Rows& lambda) noexcept {\n"
-    << "  BodyVectors g;  // IA a_p - force + what the children pass on\n"
-    << "  BodyVectors part;  // a_p\n"
-    << "  for (int b = 0; b < kBodies; ++b) {\n    g[b] = -force[b];\n    part[b].setZero();\n  }\n";
-  if (blocks() == 0) o << "  (void)target;\n  (void)lambda;\n";
+  if (with_targets) {
+    o << "// (t, force, target) => (acc, tree rows of lambda): the body accelerations\n"
+      << "// u' = D z' + a_p with B u' = target on the tree rows and D^T (M u' - force)\n"
+      << "// = 0, and the tree joints' multipliers from the force each one carries.\n"
+      << "// a_p = Q G^-1 target is a particular solution per joint. Leaves first,\n"
+      << "// then from the roots.\n"
+      << "void tree_solve(const TreeSystem& t, const BodyVectors& force, const Rows& target, BodyVectors& acc,\n"
+      << "                Rows& lambda) noexcept {\n"
+      << "  BodyVectors g;     // IA a_p - force + what the children pass on\n"
+      << "  BodyVectors part;  // a_p\n"
+      << "  for (int b = 0; b < kBodies; ++b) {\n    g[b] = -force[b];\n    part[b].setZero();\n  }\n";
+    if (blocks() == 0) o << "  (void)target;\n  (void)lambda;\n";
+  } else {
+    o << "// (t, force) => (acc): u' = D z' with D^T (M u' - force) = 0, the tree's\n"
+      << "// response to a force (with a momentum as force: the M-orthogonal\n"
+      << "// projection onto the tree's velocity constraints).\n"
+      << "void tree_response(const TreeSystem& t, const BodyVectors& force, BodyVectors& acc) noexcept {\n"
+      << "  BodyVectors g;  // -force + what the children pass on\n"
+      << "  for (int b = 0; b < kBodies; ++b) g[b] = -force[b];\n";
+  }
   for (const TreeBody& tb : tree.order) {
     if (tb.dofs > 0) o << "  " << rows_type(tb.dofs) << " y_" << tb.body << ";  // L^-1 H^T g\n";
   }
@@ -142,11 +174,11 @@ void Emitter::nps_tree_solve(std::ostringstream& o) const {
     const TreeBody& tb = tree.order[n];
     const std::string i = idx(tb.body);
     o << "  {  // " << body(tb.body).name << "\n";
-    if (tb.joint >= 0) {
+    if (with_targets && tb.joint >= 0) {
       o << "    " << rows_type(rows(tb.joint)) << " x = " << seg("target", tb.joint) << ";\n"
         << "    mbrt::solve_lower(t.G_" << i << ", x);\n"
         << "    part[" << i << "] = t.Q_" << i << " * x;\n"
-        << "    g[" << i << "] += t.IA_" << i << " * part[" << i << "];\n";
+        << "    g[" << i << "] += " << ia_times(tb, "part[" + i + "]") << ";\n";
     }
     if (tb.dofs > 0) {
       o << "    y_" << i << " = " << h_transpose_times(tb, "g[" + i + "]") << ";\n"
@@ -160,12 +192,13 @@ void Emitter::nps_tree_solve(std::ostringstream& o) const {
   }
   for (const TreeBody& tb : tree.order) {
     const std::string i = idx(tb.body);
+    const std::string particular = with_targets ? "part[" + i + "]" : "";
     o << "  {  // " << body(tb.body).name << "\n";
     if (tb.parent != kGround) {
       o << "    const mbrt::Vec6 carried = t.X_" << i << " * acc[" << tb.parent << "];\n"
-        << "    acc[" << i << "] = carried + part[" << i << "];\n";
+        << "    acc[" << i << "] = carried" << (with_targets ? " + " + particular : "") << ";\n";
     } else {
-      o << "    acc[" << i << "] = part[" << i << "];\n";
+      o << "    acc[" << i << "] = " << (with_targets ? particular : "mbrt::Vec6::Zero()") << ";\n";
     }
     if (tb.dofs > 0) {
       o << "    " << rows_type(tb.dofs) << " z = -y_" << i;
@@ -173,10 +206,10 @@ void Emitter::nps_tree_solve(std::ostringstream& o) const {
       o << ";\n    mbrt::solve_lower_transposed(t.L_" << i << ", z);\n"
         << "    acc[" << i << "] += " << h_times(tb, "z") << ";\n";
     }
-    if (tb.joint >= 0) {
+    if (with_targets && tb.joint >= 0) {
       // The joint's force on the child, -B^T lambda = IA (u' - a_p) + g.
-      o << "    " << rows_type(rows(tb.joint)) << " l = -(t.Q_" << i << ".transpose() * (t.IA_" << i << " * (acc[" << i
-        << "] - part[" << i << "]) + g[" << i << "]));\n"
+      o << "    " << rows_type(rows(tb.joint)) << " l = -(t.Q_" << i << ".transpose() * ("
+        << ia_times(tb, "mbrt::Vec6(acc[" + i + "] - part[" + i + "])") << " + g[" << i << "]));\n"
         << "    mbrt::solve_lower_transposed(t.G_" << i << ", l);\n"
         << "    " << seg("lambda", tb.joint) << " = l;\n";
     }
@@ -211,9 +244,9 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
     << "// (c, t) => (t.S_cut): S_cut = B_cut T B_cut^T + kRegularization I with T\n"
     << "// the tree's response to a force, one tree solve per cut row.\n"
     << "bool factorize_cut(const ConstraintSystem& c, TreeSystem& t) noexcept {\n"
-    << "  Rows lambda = Rows::Zero();\n  BodyVectors acc;\n"
+    << "  BodyVectors acc;\n"
     << "  for (int r = 0; r < kCutRows; ++r) {\n"
-    << "    tree_solve(t, cut_forces(c, CutRows::Unit(r)), Rows::Zero(), acc, lambda);\n"
+    << "    tree_response(t, cut_forces(c, CutRows::Unit(r)), acc);\n"
     << "    t.S_cut.col(r) = cut_rows_of(jacobian_times(c, acc));\n  }\n"
     << "  t.S_cut.diagonal().array() += kRegularization;\n"
     << "  return mbrt::cholesky_in_place(t.S_cut);\n}\n\n"
@@ -223,15 +256,16 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
     << "// (t, c, mu, u) => (u): u -= T B_cut^T mu\n"
     << "void subtract_cut_response(const TreeSystem& t, const ConstraintSystem& c, const CutRows& mu,\n"
     << "                           BodyVectors& u) noexcept {\n"
-    << "  Rows unused = Rows::Zero();\n  BodyVectors du;\n"
-    << "  tree_solve(t, cut_forces(c, mu), Rows::Zero(), du, unused);\n"
+    << "  BodyVectors du;\n"
+    << "  tree_response(t, cut_forces(c, mu), du);\n"
     << "  for (int b = 0; b < kBodies; ++b) u[b] -= du[b];\n}\n\n";
 }
 
 void Emitter::nps_stages(std::ostringstream& o) const {
   const bool cuts = a_.tree.cut_rows > 0;
   nps_factorize(o);
-  nps_tree_solve(o);
+  nps_tree_solve(o, true);
+  nps_tree_solve(o, false);
   if (cuts) nps_cut_rows(o);
   o << "// (c, t, l, u_half) => (u): implicit stage. u is the M-orthogonal projection\n"
     << "// of u_half + h/2 M^-1 F onto the tree's velocity constraints (a tree solve\n"
@@ -244,7 +278,7 @@ void Emitter::nps_stages(std::ostringstream& o) const {
     o << "  momentum[" << i << "] = mbrt::mass_times(" << mass_of(static_cast<int>(i)) << ", u_half[" << i
       << "]) + (0.5 * h) * mbrt::as_vector(l.w[" << i << "]);\n";
   }
-  o << "  Rows unused = Rows::Zero();\n  tree_solve(t, momentum, Rows::Zero(), u, unused);\n";
+  o << "  tree_response(t, momentum, u);\n";
   if (cuts) {
     o << "  CutRows mu = cut_rows_of(velocity_residual(c, u));\n  solve_cut(t, mu);\n"
       << "  subtract_cut_response(t, c, mu, u);\n";

@@ -142,7 +142,10 @@ class Emitter {
   std::string h_times(const TreeBody& tb, const std::string& z) const;
   void nps_workspace(std::ostringstream& o) const;
   void nps_factorize(std::ostringstream& o) const;
-  void nps_tree_solve(std::ostringstream& o) const;
+  void nps_tree_solve(std::ostringstream& o, bool with_targets) const;
+  bool tree_leaf(const TreeBody& tb) const;
+  std::string ia_times(const TreeBody& tb, const std::string& x) const;
+  std::string ia_matrix(const TreeBody& tb) const;
   void nps_cut_rows(std::ostringstream& o) const;
   void nps_stages(std::ostringstream& o) const;
 

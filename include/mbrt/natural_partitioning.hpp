@@ -44,6 +44,14 @@ inline Vec6 mass_times(const Inertia& b, const Vec6& u) noexcept {
   return p;
 }
 
+// M X, column by column: a leaf body's articulated inertia is its mass.
+template <class Mass, int K>
+inline Eigen::Matrix<double, 6, K> mass_times_columns(const Mass& b, const Eigen::Matrix<double, 6, K>& x) noexcept {
+  Eigen::Matrix<double, 6, K> y;
+  for (int c = 0; c < K; ++c) y.col(c) = mass_times(b, Vec6(x.col(c)));
+  return y;
+}
+
 inline Vec6 as_vector(const Wrench& w) noexcept {
   Vec6 f;
   f << w.f, w.tau;
@@ -53,7 +61,8 @@ inline Vec6 as_vector(const Wrench& w) noexcept {
 // X with u_child = X u_parent when the child moves rigidly with its parent:
 // w_child = R_c^T R_p w_p, v_child = v_p + R_p (w_p x rho), rho the child's
 // COM in parent axes. Every scleronomic joint allows this motion, so
-// B_parent + B_child X = 0 for any of them.
+// B_parent + B_child X = 0 for any of them. Kept dense: 6 x 6 products
+// vectorize better than products with its 3 x 3 blocks.
 inline Mat6 rigid_transfer(const BodyPose& parent, const BodyPose& child) noexcept {
   const Vec3 rho = parent.R.transpose() * (child.r - parent.r);
   Mat6 x = Mat6::Zero();
