@@ -11,29 +11,47 @@ std::string idx(int i) { return std::to_string(i); }
 }  // namespace
 
 // Expressions of the null-space columns of the joint that carries tb, in the
-// child's body axes: turns about and slides along the joint's own directions.
+// child's body axes: turns about and slides along the joint's directions
+// fixed in body 1. Those keep every row of the joint satisfied to first
+// order even where the positions have drifted (body 2's copies only do so
+// on the constraint manifold), so B H = 0 holds to round-off.
 std::vector<std::string> Emitter::null_space_columns(const TreeBody& tb) const {
   const std::string f = jname(tb.joint) + "_frame.";
-  const std::string me = tb.child_is_body2 ? "2" : "1";
-  const std::string other = tb.child_is_body2 ? "1" : "2";
   const std::string p = pose(tb.body);
-  const std::string s = f + "s" + me, a = f + "a" + me, b = f + "b" + me, c = f + "c" + me;
+  const std::string s = f + (tb.child_is_body2 ? "s2" : "s1");
+  // A body-1 direction in the child's axes (to_child = R_child^T R_parent).
+  auto body1 = [&](const std::string& d) {
+    return tb.child_is_body2 ? "mbrt::Vec3(to_child * " + f + d + "1)" : f + d + "1";
+  };
   auto turn = [&](const std::string& e) { return "mbrt::turn_about(" + p + ", " + s + ", " + e + ")"; };
   auto slide = [&](const std::string& e) { return "mbrt::slide_along(" + p + ", " + e + ")"; };
+  const std::string a = body1("a");
   switch (m_.joints[static_cast<size_t>(tb.joint)].type) {
     case JointType::revolute: return {turn(a)};
     case JointType::prismatic: return {slide(a)};
     case JointType::cylindrical: return {turn(a), slide(a)};
     case JointType::spherical:
       return {turn("mbrt::Vec3::UnitX()"), turn("mbrt::Vec3::UnitY()"), turn("mbrt::Vec3::UnitZ()")};
-    case JointType::universal:
-      // The parent's axis, carried into the child's axes.
-      return {turn(a), turn("mbrt::Vec3(" + p + ".R.transpose() * (" + pose(tb.parent) + ".R * " + f + "a" + other +
-                            "))")};
-    case JointType::planar: return {turn(a), slide(b), slide(c)};
+    case JointType::universal:  // about either axis: axis 1 of body 1, axis 2 of body 2
+      return {turn(a), turn(tb.child_is_body2 ? f + "a2" : "mbrt::Vec3(to_child * " + f + "a2)")};
+    case JointType::planar: return {turn(a), slide(body1("b")), slide(body1("c"))};
     case JointType::screw: return {turn(a) + " + " + f + "pitch * " + slide(a)};
     default: return {};  // fixed
   }
+}
+
+// Joints whose first rows make the joint points coincide: the transfer from
+// the parent is anchored at the joint point.
+bool Emitter::has_coincidence_rows(JointType type) const {
+  return type == JointType::spherical || type == JointType::revolute || type == JointType::universal ||
+         type == JointType::fixed;
+}
+
+// Whether the columns need to_child = R_child^T R_parent.
+bool Emitter::carries_parent_axes(const TreeBody& tb) const {
+  const JointType type = m_.joints[static_cast<size_t>(tb.joint)].type;
+  if (type == JointType::spherical || type == JointType::fixed) return false;
+  return tb.child_is_body2 || type == JointType::universal;
 }
 
 // H^T x, H z and M H for one tree body; a free body's H is the identity (a
@@ -54,6 +72,9 @@ bool Emitter::tree_leaf(const TreeBody& tb) const {
   }
   return true;
 }
+
+// A free body without children needs no elimination: u' = M^-1 force.
+bool Emitter::free_leaf(const TreeBody& tb) const { return tb.joint < 0 && tree_leaf(tb); }
 
 // IA x; a leaf's articulated inertia is its mass matrix, which is sparse.
 std::string Emitter::ia_times(const TreeBody& tb, const std::string& x) const {
@@ -77,7 +98,7 @@ void Emitter::nps_workspace(std::ostringstream& o) const {
     o << "  // " << body(tb.body).name << "\n";
     if (!tree_leaf(tb)) o << "  mbrt::Mat6 IA_" << i << ";\n";
     if (tb.joint >= 0 && tb.dofs > 0) o << "  " << block_type(6, tb.dofs) << " H_" << i << ";\n";
-    if (tb.dofs > 0) o << "  " << block_type(tb.dofs, tb.dofs) << " L_" << i << ";\n";
+    if (tb.dofs > 0 && !free_leaf(tb)) o << "  " << block_type(tb.dofs, tb.dofs) << " L_" << i << ";\n";
     if (tb.parent != kGround) {
       o << "  mbrt::Mat6 X_" << i << ";\n";
       if (tb.dofs > 0) o << "  " << block_type(6, tb.dofs) << " W_" << i << ";\n";
@@ -104,9 +125,13 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
   for (size_t n = tree.order.size(); n-- > 0;) {
     const TreeBody& tb = tree.order[n];
     const std::string i = idx(tb.body);
+    if (free_leaf(tb)) continue;
     o << "  {  // " << body(tb.body).name
       << (tb.joint >= 0 ? ", joint " + jname(tb.joint) + " to " + m_.body_name(tb.parent) : ", free") << "\n";
     if (tb.joint >= 0) {
+      if (carries_parent_axes(tb)) {
+        o << "    const mbrt::Mat3 to_child = " << pose(tb.body) << ".R.transpose() * " << pose(tb.parent) << ".R;\n";
+      }
       const std::vector<std::string> cols = null_space_columns(tb);
       for (size_t q = 0; q < cols.size(); ++q) o << "    t.H_" << i << ".col(" << q << ") = " << cols[q] << ";\n";
     }
@@ -121,7 +146,12 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
     if (tb.dofs > 0) o << "    positive = mbrt::cholesky_in_place(t.L_" << i << ") && positive;\n";
     if (tb.parent != kGround) {
       const std::string p = idx(tb.parent);
-      o << "    t.X_" << i << " = mbrt::rigid_transfer(" << pose(tb.parent) << ", " << pose(tb.body) << ");\n";
+      o << "    t.X_" << i << " = mbrt::rigid_transfer(" << pose(tb.parent) << ", " << pose(tb.body);
+      if (tb.joint >= 0 && has_coincidence_rows(m_.joints[static_cast<size_t>(tb.joint)].type)) {
+        const std::string f = jname(tb.joint) + "_frame.";
+        o << ", " << f << (tb.child_is_body2 ? "s1, " : "s2, ") << f << (tb.child_is_body2 ? "s2" : "s1");
+      }
+      o << ");\n";
       if (tb.dofs > 0) {
         o << "    t.W_" << i << " = U;\n    mbrt::solve_right_lower_transposed(t.L_" << i << ", t.W_" << i << ");\n"
           << "    t.IA_" << p << " += t.X_" << i << ".transpose() * (" << ia_matrix(tb) << " - t.W_" << i << " * t.W_"
@@ -168,11 +198,12 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
       << "  for (int b = 0; b < kBodies; ++b) g[b] = -force[b];\n";
   }
   for (const TreeBody& tb : tree.order) {
-    if (tb.dofs > 0) o << "  " << rows_type(tb.dofs) << " y_" << tb.body << ";  // L^-1 H^T g\n";
+    if (tb.dofs > 0 && !free_leaf(tb)) o << "  " << rows_type(tb.dofs) << " y_" << tb.body << ";  // L^-1 H^T g\n";
   }
   for (size_t n = tree.order.size(); n-- > 0;) {
     const TreeBody& tb = tree.order[n];
     const std::string i = idx(tb.body);
+    if (free_leaf(tb)) continue;
     o << "  {  // " << body(tb.body).name << "\n";
     if (with_targets && tb.joint >= 0) {
       o << "    " << rows_type(rows(tb.joint)) << " x = " << seg("target", tb.joint) << ";\n"
@@ -193,6 +224,11 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
   for (const TreeBody& tb : tree.order) {
     const std::string i = idx(tb.body);
     const std::string particular = with_targets ? "part[" + i + "]" : "";
+    if (free_leaf(tb)) {
+      o << "  acc[" << i << "] = mbrt::inverse_mass_times(" << mass_of(tb.body) << ", force[" << i << "]);  // "
+        << body(tb.body).name << ", free\n";
+      continue;
+    }
     o << "  {  // " << body(tb.body).name << "\n";
     if (tb.parent != kGround) {
       o << "    const mbrt::Vec6 carried = t.X_" << i << " * acc[" << tb.parent << "];\n"

@@ -138,12 +138,15 @@ class Emitter {
   // emit_nps.cpp: the tree elimination (a_.tree) and the cut rows.
   bool nps_cuts() const { return a_.tree.cut_rows > 0; }
   std::vector<std::string> null_space_columns(const TreeBody& tb) const;
+  bool carries_parent_axes(const TreeBody& tb) const;
+  bool has_coincidence_rows(JointType type) const;
   std::string h_transpose_times(const TreeBody& tb, const std::string& x) const;
   std::string h_times(const TreeBody& tb, const std::string& z) const;
   void nps_workspace(std::ostringstream& o) const;
   void nps_factorize(std::ostringstream& o) const;
   void nps_tree_solve(std::ostringstream& o, bool with_targets) const;
   bool tree_leaf(const TreeBody& tb) const;
+  bool free_leaf(const TreeBody& tb) const;
   std::string ia_times(const TreeBody& tb, const std::string& x) const;
   std::string ia_matrix(const TreeBody& tb) const;
   void nps_cut_rows(std::ostringstream& o) const;

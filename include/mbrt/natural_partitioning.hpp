@@ -52,6 +52,12 @@ inline Eigen::Matrix<double, 6, K> mass_times_columns(const Mass& b, const Eigen
   return y;
 }
 
+// M^-1 f for f = [force; torque], as a free body without children moves.
+template <class Mass>
+inline Vec6 inverse_mass_times(const Mass& b, const Vec6& f) noexcept {
+  return inverse_mass_times(b, Wrench{f.head<3>(), f.tail<3>()});
+}
+
 inline Vec6 as_vector(const Wrench& w) noexcept {
   Vec6 f;
   f << w.f, w.tau;
@@ -59,16 +65,32 @@ inline Vec6 as_vector(const Wrench& w) noexcept {
 }
 
 // X with u_child = X u_parent when the child moves rigidly with its parent:
-// w_child = R_c^T R_p w_p, v_child = v_p + R_p (w_p x rho), rho the child's
-// COM in parent axes. Every scleronomic joint allows this motion, so
-// B_parent + B_child X = 0 for any of them. Kept dense: 6 x 6 products
-// vectorize better than products with its 3 x 3 blocks.
+// w_child = C w_p, C = R_c^T R_p. Kept dense: 6 x 6 products vectorize
+// better than products with its 3 x 3 blocks.
+//
+// About the parent's COM (v_child = v_p + R_p (w_p x rho), rho the child's
+// COM in parent axes), every relative quantity in the parent's axes stays
+// constant, so B_parent + B_child X = 0 for the sliding joints at any
+// configuration.
 inline Mat6 rigid_transfer(const BodyPose& parent, const BodyPose& child) noexcept {
   const Vec3 rho = parent.R.transpose() * (child.r - parent.r);
   Mat6 x = Mat6::Zero();
   x.topLeftCorner<3, 3>().setIdentity();
   x.topRightCorner<3, 3>() = -parent.R * skew(rho);
   x.bottomRightCorner<3, 3>() = child.R.transpose() * parent.R;
+  return x;
+}
+
+// The same motion anchored at the joint point instead (s_p, s_c: the joint
+// point on each body): the child's point moves with the parent's, so joint
+// points that have drifted apart keep their world offset and the
+// coincidence rows' B_parent + B_child X = 0 holds exactly too.
+inline Mat6 rigid_transfer(const BodyPose& parent, const BodyPose& child, const Vec3& s_p, const Vec3& s_c) noexcept {
+  Mat6 x = Mat6::Zero();
+  const Mat3 c = child.R.transpose() * parent.R;
+  x.topLeftCorner<3, 3>().setIdentity();
+  x.topRightCorner<3, 3>() = -parent.R * skew(s_p) + child.R * skew(s_c) * c;
+  x.bottomRightCorner<3, 3>() = c;
   return x;
 }
 
