@@ -67,8 +67,9 @@ std::string signal(const std::string& name, int start, int bits, bool is_signed,
   return o.str();
 }
 
-// The attribute CAN FD tools read a frame's kind from (Vector CANdb++,
-// cantools, candied): enumeration value 14 is StandardCAN_FD.
+// The attribute DBC tools read a frame's kind from (Vector CANdb++,
+// cantools: a format ending in CAN_FD), defined as they define it:
+// enumeration value 14 is StandardCAN_FD. BusType marks the bus as CAN FD.
 constexpr const char* kFrameFormatDefinition =
     "BA_DEF_ BO_ \"VFrameFormat\" ENUM \"StandardCAN\",\"ExtendedCAN\",\"reserved\",\"J1939PG\",\"reserved\",\"reserved\","
     "\"reserved\",\"reserved\",\"reserved\",\"reserved\",\"reserved\",\"reserved\",\"reserved\",\"reserved\","

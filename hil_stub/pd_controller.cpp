@@ -273,7 +273,7 @@ class LcmLink final : public Link {
 
 class CanLink final : public Link {
  public:
-  explicit CanLink(const LinkOptions& o) : bus_(open_can_bus(o.can_bus)) {}
+  explicit CanLink(const LinkOptions& o) : bus_(open_can_bus(o.can_bus, model::can::kLayout.fd)) {}
 
   // Like LCM's: waits up to wait_ms for the first frames, takes those
   // waiting, returns. A state is whole when all its output frames follow

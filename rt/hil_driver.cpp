@@ -151,7 +151,7 @@ struct CanLink {
   std::unique_ptr<CanBus> bus;
   std::unique_ptr<CandumpLog> log;
 
-  explicit CanLink(const LinkOptions& o) : bus(open_can_bus(o.can_bus)) {
+  explicit CanLink(const LinkOptions& o) : bus(open_can_bus(o.can_bus, model::can::kLayout.fd)) {
     const std::string udp = "udp://";
     if (!o.can_log.empty()) log = std::make_unique<CandumpLog>(o.can_log, o.can_bus.rfind(udp, 0) == 0 ? "udp0" : o.can_bus);
   }

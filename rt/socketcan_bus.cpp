@@ -17,11 +17,18 @@ namespace {
 
 class SocketCanBus final : public CanBus {
  public:
-  explicit SocketCanBus(const std::string& interface) : socket_(PF_CAN, SOCK_RAW, CAN_RAW) {
+  SocketCanBus(const std::string& interface, bool fd) : socket_(PF_CAN, SOCK_RAW, CAN_RAW) {
     ifreq request{};
     if (interface.size() >= sizeof request.ifr_name) throw std::runtime_error("interface name too long: " + interface);
     std::strncpy(request.ifr_name, interface.c_str(), sizeof request.ifr_name - 1);
     if (ioctl(socket_.fd, SIOCGIFINDEX, &request) != 0) throw_errno("CAN interface '" + interface + "'");
+    if (fd) {
+      if (ioctl(socket_.fd, SIOCGIFMTU, &request) != 0) throw_errno("MTU of '" + interface + "'");
+      if (request.ifr_mtu != static_cast<int>(CANFD_MTU)) {
+        throw std::runtime_error("CAN interface '" + interface + "' does not carry CAN FD frames (MTU " +
+                                 std::to_string(request.ifr_mtu) + "; e.g. ip link set " + interface + " mtu 72)");
+      }
+    }
     // Classic frames arrive as can_frame (CAN_MTU bytes), CAN FD ones as canfd_frame (CANFD_MTU).
     const int yes = 1;
     if (setsockopt(socket_.fd, SOL_CAN_RAW, CAN_RAW_FD_FRAMES, &yes, sizeof yes) != 0) throw_errno("CAN_RAW_FD_FRAMES");
@@ -67,8 +74,8 @@ class SocketCanBus final : public CanBus {
 
 }  // namespace
 
-std::unique_ptr<CanBus> open_socketcan_bus(const std::string& interface) {
-  return std::make_unique<SocketCanBus>(interface);
+std::unique_ptr<CanBus> open_socketcan_bus(const std::string& interface, bool fd) {
+  return std::make_unique<SocketCanBus>(interface, fd);
 }
 
 }  // namespace mbrt::rt

@@ -45,7 +45,7 @@ int receive_some(mbrt::rt::CanBus& bus, canfd_frame* frames, int max) {
 }  // namespace
 
 TEST_CASE("a frame crosses the UDP bus whole; extended and remote flags included") {
-  auto a = mbrt::rt::open_can_bus(kBus), b = mbrt::rt::open_can_bus(kBus);
+  auto a = mbrt::rt::open_can_bus(kBus, false), b = mbrt::rt::open_can_bus(kBus, false);
   for (const canid_t id : {canid_t{0x123}, canid_t{0x1abcdef | CAN_EFF_FLAG}, canid_t{0x7ff | CAN_RTR_FLAG}}) {
     const canfd_frame sent = test_frame(id);
     REQUIRE(a->send(sent));
@@ -60,7 +60,7 @@ TEST_CASE("a frame crosses the UDP bus whole; extended and remote flags included
 }
 
 TEST_CASE("a CAN FD frame crosses the UDP bus whole, its flags included") {
-  auto a = mbrt::rt::open_can_bus(kBus), b = mbrt::rt::open_can_bus(kBus);
+  auto a = mbrt::rt::open_can_bus(kBus, true), b = mbrt::rt::open_can_bus(kBus, true);
   for (const std::uint8_t len : {std::uint8_t{12}, std::uint8_t{64}}) {
     const canfd_frame sent = test_frame(0x101, len, CANFD_FDF | CANFD_BRS | CANFD_ESI);
     REQUIRE(a->send(sent));
@@ -102,14 +102,14 @@ void expect_undecodable(mbrt::rt::CanBus& bus, long expected) {
 }  // namespace
 
 TEST_CASE("a datagram that is not a CAN message is counted, not delivered") {
-  auto bus = mbrt::rt::open_can_bus(kBus);
+  auto bus = mbrt::rt::open_can_bus(kBus, false);
   const char garbage[] = "\x81\xa4" "data" "\xc4\x09";  // a map whose data claims 9 bytes
   send_datagram(garbage, sizeof garbage - 1);
   expect_undecodable(*bus, 1);
 }
 
 TEST_CASE("malformed CAN FD datagrams are counted, not delivered") {
-  auto bus = mbrt::rt::open_can_bus(kBus);
+  auto bus = mbrt::rt::open_can_bus(kBus, false);
   std::uint8_t datagram[mbrt::rt::kCanUdpMaxDatagram];
   // 13 data bytes: no CAN FD length (encode writes what it is given).
   send_datagram(datagram, mbrt::rt::encode_can_udp(test_frame(0x200, 13, CANFD_FDF), 1.0, datagram));
@@ -126,7 +126,7 @@ TEST_CASE("malformed CAN FD datagrams are counted, not delivered") {
 }
 
 TEST_CASE("sending and receiving on the UDP bus allocates nothing") {
-  auto a = mbrt::rt::open_can_bus(kBus), b = mbrt::rt::open_can_bus(kBus);
+  auto a = mbrt::rt::open_can_bus(kBus, false), b = mbrt::rt::open_can_bus(kBus, false);
   std::array<canfd_frame, 32> got{};
   const canfd_frame f = test_frame(0x200);
   long received = 0, seen = 0;
@@ -145,8 +145,10 @@ TEST_CASE("sending and receiving on the UDP bus allocates nothing") {
 }
 
 TEST_CASE("bad bus names are refused at start-up") {
-  CHECK_THROWS_AS(mbrt::rt::open_can_bus("no_such_can9"), std::runtime_error);
-  CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://10.0.0.1:43114"), std::runtime_error);  // not multicast
-  CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://239.74.163.2"), std::runtime_error);
-  CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://239.74.163.2:x"), std::runtime_error);
+  for (const bool fd : {false, true}) {
+    CHECK_THROWS_AS(mbrt::rt::open_can_bus("no_such_can9", fd), std::runtime_error);
+    CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://10.0.0.1:43114", fd), std::runtime_error);  // not multicast
+    CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://239.74.163.2", fd), std::runtime_error);
+    CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://239.74.163.2:x", fd), std::runtime_error);
+  }
 }

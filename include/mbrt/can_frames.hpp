@@ -36,8 +36,6 @@ inline constexpr double kMaxValue = 2147.483647;
 inline constexpr int kHeaderBytes = 8;   // state frame: seq, command_seq, t
 inline constexpr int kCommandHeaderBytes = 4;  // command frame: seq, state_seq
 inline constexpr int kValueBytes = 4;
-// Inputs one CAN FD command frame carries.
-inline constexpr int kMaxInputsPerFrame = (CANFD_MAX_DLEN - kCommandHeaderBytes) / kValueBytes;
 
 // The data lengths a CAN FD frame may have (its DLC codes 0 to 15).
 inline constexpr bool is_fd_length(int len) noexcept {
@@ -79,6 +77,9 @@ struct Layout {
     return length(kCommandHeaderBytes + kValueBytes * input_count(k));
   }
 };
+
+// Inputs one command frame carries at most (a CAN FD one).
+inline constexpr int kMaxInputsPerFrame = Layout{true, 0, 0}.inputs_per_frame();
 
 struct StateHeader {
   std::uint16_t seq = 0;          // cycle number, modulo 2^16

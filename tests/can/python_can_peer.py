@@ -185,7 +185,7 @@ else:
     check(not mismatched, f"every command value sent is in the log ({len(sent)} commands; mismatched {mismatched[:5]})")
     seqs = [s for s, _ in states]
     check(len(states) == 3000 and seqs == list(range(3000)), f"the log holds every state, in order ({len(states)})")
-    h = 1.0 / 1000  # one model step per cycle at 1 kHz for this model
+    h = 1.0 / 1000  # one model step per cycle at 1 kHz for the models the tests use
     bad_t = [(s, t) for s, t in states if abs(t - (s + 1) * h) > 1e-5]
     check(not bad_t, f"each state's t is (seq + 1) h ({bad_t[:3]})")
 finish()

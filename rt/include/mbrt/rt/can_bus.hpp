@@ -28,6 +28,8 @@ class CanBus {
 };
 
 // "udp://GROUP:PORT" (IPv4 multicast group) or a SocketCAN interface name.
-std::unique_ptr<CanBus> open_can_bus(const std::string& spec);
+// fd: CAN FD frames will be sent, so a SocketCAN interface must have the CAN
+// FD MTU (refused at start-up otherwise, rather than every send failing).
+std::unique_ptr<CanBus> open_can_bus(const std::string& spec, bool fd);
 
 }  // namespace mbrt::rt
