@@ -99,7 +99,7 @@ std::string dbc(const Model& m, bool fd) {
     }
     for (int i = 0; i < l.output_count(k); ++i) {
       const ValueName& v = values[static_cast<size_t>(l.first_output(k) + i)];
-      o << signal(v.name, 8 * l.value_offset(k) + 32 * i, 32, true, kValueFactor, lo, hi, v.unit, "controller");
+      o << signal(v.name, 8 * l.output_byte(k, i), 32, true, kValueFactor, lo, hi, v.unit, "controller");
     }
     o << "\n";
   }
@@ -111,7 +111,7 @@ std::string dbc(const Model& m, bool fd) {
       << signal("seq", 0, 16, false, "1", 0, 65535, "", "mbrt") << signal("state_seq", 16, 16, false, "1", 0, 65535, "", "mbrt");
     for (int i = 0; i < l.input_count(k); ++i) {
       const Input& in = m.inputs[static_cast<size_t>(l.first_input(k) + i)];
-      o << signal(in.name, 32 + 32 * i, 32, true, kValueFactor, in.min, in.max, input_unit(in), "mbrt");
+      o << signal(in.name, 8 * l.input_byte(i), 32, true, kValueFactor, in.min, in.max, input_unit(in), "mbrt");
     }
     o << "\n";
   }
@@ -122,12 +122,14 @@ std::string dbc(const Model& m, bool fd) {
   // Raw INT32_MIN: no value (NaN, Inf or beyond the range).
   for (int k = 0; k < l.state_frames(); ++k) {
     for (int i = 0; i < l.output_count(k); ++i) {
-      o << "VAL_ " << kStateId + k << " " << values[static_cast<size_t>(l.first_output(k) + i)].name << " -2147483648 \"invalid\" ;\n";
+      const ValueName& v = values[static_cast<size_t>(l.first_output(k) + i)];
+      o << "VAL_ " << kStateId + k << " " << v.name << " -2147483648 \"invalid\" ;\n";
     }
   }
   for (int k = 0; k < l.command_frames(); ++k) {
     for (int i = 0; i < l.input_count(k); ++i) {
-      o << "VAL_ " << kCommandId + k << " " << m.inputs[static_cast<size_t>(l.first_input(k) + i)].name << " -2147483648 \"invalid\" ;\n";
+      const Input& in = m.inputs[static_cast<size_t>(l.first_input(k) + i)];
+      o << "VAL_ " << kCommandId + k << " " << in.name << " -2147483648 \"invalid\" ;\n";
     }
   }
   return o.str();

@@ -86,7 +86,8 @@ TEST_CASE("outputs of a moving model survive the state frames") {
 template <class Frames, class Pack, class Unpack>
 void check_command_round_trip(Pack pack, Unpack unpack) {
   const double inf = std::numeric_limits<double>::infinity();
-  for (const std::array<double, 3>& u : {std::array<double, 3>{1.5, -19.999999, 0.25}, std::array<double, 3>{std::nan(""), inf, 3000.0}}) {
+  using Inputs = std::array<double, 3>;
+  for (const Inputs& u : {Inputs{1.5, -19.999999, 0.25}, Inputs{std::nan(""), inf, 3000.0}}) {
     Frames frames;
     pack(41, 40, u, frames);
     std::array<double, 3> back{};
@@ -123,7 +124,9 @@ TEST_CASE("a layout of many values spreads them over full frames, and they come 
     REQUIRE(l.state_frames() <= 21);
     can::pack_state(l, 0x100, y.data(), {}, frames.data());
     can::StateHeader h;
-    for (int k = 0; k < l.state_frames(); ++k) REQUIRE(can::unpack_state(l, 0x100, frames[static_cast<std::size_t>(k)], y_back.data(), h) == can::FrameCheck::ok);
+    for (int k = 0; k < l.state_frames(); ++k) {
+      REQUIRE(can::unpack_state(l, 0x100, frames[static_cast<std::size_t>(k)], y_back.data(), h) == can::FrameCheck::ok);
+    }
     for (std::size_t i = 0; i < y.size(); ++i) CHECK(std::abs(y_back[i] - y[i]) <= 0.5e-6 + 1e-12);
     REQUIRE(l.command_frames() <= 21);
     can::pack_command(l, 0x200, 1, 2, u.data(), frames.data());

@@ -61,21 +61,21 @@ struct Layout {
     const int rest = std::max(0, outputs - values_in_header());
     return 1 + (rest + values_per_frame() - 1) / values_per_frame();
   }
-  // State frame k: where its output values start in it, the first one's index, how many.
-  constexpr int value_offset(int k) const noexcept { return k == 0 ? kHeaderBytes : 0; }
+  // State frame k: its first output's index, how many it carries, the byte of its i-th.
   constexpr int first_output(int k) const noexcept { return k == 0 ? 0 : values_in_header() + (k - 1) * values_per_frame(); }
   constexpr int output_count(int k) const noexcept {
     return std::min(outputs - first_output(k), k == 0 ? values_in_header() : values_per_frame());
   }
-  constexpr std::uint8_t state_length(int k) const noexcept { return length(value_offset(k) + kValueBytes * output_count(k)); }
+  constexpr int output_byte(int k, int i) const noexcept { return (k == 0 ? kHeaderBytes : 0) + kValueBytes * i; }
+  constexpr std::uint8_t state_length(int k) const noexcept { return length(output_byte(k, output_count(k))); }
 
   constexpr int inputs_per_frame() const noexcept { return (payload() - kCommandHeaderBytes) / kValueBytes; }
   constexpr int command_frames() const noexcept { return (inputs + inputs_per_frame() - 1) / inputs_per_frame(); }
   constexpr int first_input(int k) const noexcept { return k * inputs_per_frame(); }
   constexpr int input_count(int k) const noexcept { return std::min(inputs - first_input(k), inputs_per_frame()); }
-  constexpr std::uint8_t command_length(int k) const noexcept {
-    return length(kCommandHeaderBytes + kValueBytes * input_count(k));
-  }
+  // The byte of a command frame's i-th input.
+  constexpr int input_byte(int i) const noexcept { return kCommandHeaderBytes + kValueBytes * i; }
+  constexpr std::uint8_t command_length(int k) const noexcept { return length(input_byte(input_count(k))); }
 };
 
 // Inputs one command frame carries at most (a CAN FD one).
@@ -131,7 +131,8 @@ inline canfd_frame empty_frame(const Layout& l, canid_t id, std::uint8_t len) no
 // frame, a frame of the other kind (classic for FD, FD for classic) or a
 // wrong length with one of our IDs is malformed.
 template <class LengthOf>
-inline FrameCheck check(const Layout& l, const canfd_frame& f, canid_t first, int count, LengthOf length_of, int& index) noexcept {
+inline FrameCheck check(const Layout& l, const canfd_frame& f, canid_t first, int count, LengthOf length_of,
+                        int& index) noexcept {
   if (f.can_id & (CAN_EFF_FLAG | CAN_ERR_FLAG)) return FrameCheck::unknown_id;
   const canid_t id = f.can_id & CAN_SFF_MASK;
   if (id < first || id >= first + static_cast<canid_t>(count)) return FrameCheck::unknown_id;
@@ -145,7 +146,7 @@ inline void pack_state(const Layout& l, canid_t state_id, const double* y, const
   for (int k = 0; k < l.state_frames(); ++k) {
     canfd_frame& f = frames[k];
     f = empty_frame(l, state_id + static_cast<canid_t>(k), l.state_length(k));
-    for (int i = 0; i < l.output_count(k); ++i) put<std::int32_t>(f.data + l.value_offset(k) + kValueBytes * i, to_raw(y[l.first_output(k) + i]));
+    for (int i = 0; i < l.output_count(k); ++i) put<std::int32_t>(f.data + l.output_byte(k, i), to_raw(y[l.first_output(k) + i]));
   }
   put<std::uint16_t>(frames[0].data, h.seq);
   put<std::uint16_t>(frames[0].data + 2, h.command_seq);
@@ -162,7 +163,7 @@ inline FrameCheck unpack_state(const Layout& l, canid_t state_id, const canfd_fr
     h.command_seq = get<std::uint16_t>(f.data + 2);
     h.t = get<std::uint32_t>(f.data + 4) * kTimeFactor;
   }
-  for (int i = 0; i < l.output_count(k); ++i) y[l.first_output(k) + i] = from_raw(get<std::int32_t>(f.data + l.value_offset(k) + kValueBytes * i));
+  for (int i = 0; i < l.output_count(k); ++i) y[l.first_output(k) + i] = from_raw(get<std::int32_t>(f.data + l.output_byte(k, i)));
   return c;
 }
 
@@ -174,7 +175,7 @@ inline void pack_command(const Layout& l, canid_t command_id, std::uint16_t seq,
     f = empty_frame(l, command_id + static_cast<canid_t>(k), l.command_length(k));
     put<std::uint16_t>(f.data, seq);
     put<std::uint16_t>(f.data + 2, state_seq);
-    for (int i = 0; i < l.input_count(k); ++i) put<std::int32_t>(f.data + kCommandHeaderBytes + kValueBytes * i, to_raw(u[l.first_input(k) + i]));
+    for (int i = 0; i < l.input_count(k); ++i) put<std::int32_t>(f.data + l.input_byte(i), to_raw(u[l.first_input(k) + i]));
   }
 }
 
@@ -186,7 +187,7 @@ inline FrameCheck unpack_command(const Layout& l, canid_t command_id, const canf
   p.count = l.input_count(k);
   p.seq = get<std::uint16_t>(f.data);
   p.state_seq = get<std::uint16_t>(f.data + 2);
-  for (int i = 0; i < p.count; ++i) p.values[static_cast<std::size_t>(i)] = from_raw(get<std::int32_t>(f.data + kCommandHeaderBytes + kValueBytes * i));
+  for (int i = 0; i < p.count; ++i) p.values[static_cast<std::size_t>(i)] = from_raw(get<std::int32_t>(f.data + l.input_byte(i)));
   return c;
 }
 
