@@ -40,6 +40,7 @@ STATE_ID, COMMAND_ID = 0x100, 0x200
 INT32_MIN = -(1 << 31)
 MAX_AGE_S = 1.0  # generous: a busy machine must not make a command late
 VALID = 40       # valid commands the peer sends
+FD_LENGTHS = [*range(9), 12, 16, 20, 24, 32, 48, 64]
 
 mbrt, model, work, mode, kind = sys.argv[1:6]
 node_modules = sys.argv[6] if len(sys.argv) > 6 else ""
@@ -85,13 +86,16 @@ def take_states(seconds):
             command_seqs.append(s["command_seq"][0])
 
 
-def send(seq, raw_values, length=None, is_fd=FD):
-    """One command: its frames, raw values as the DBC encodes them; cut to
-    length bytes, or of the other kind (is_fd), to make them malformed."""
+def send(seq, raw_values, wrong_length=None, is_fd=FD):
+    """One command: its frames, raw values as the DBC encodes them. To make
+    them malformed, wrong_length(n) gives the length of a frame the DBC gives
+    n bytes (cut, or padded with zeros), or is_fd the other kind of frame."""
     raw_values = iter(raw_values)
     for frame_id, names in zip(commands, inputs):
         signals = {"seq": seq, "state_seq": state_seq, **{n: next(raw_values) for n in names}}
-        data = messages[frame_id].encode(signals)[:length]
+        data = messages[frame_id].encode(signals)
+        if wrong_length:
+            data = (data + bytes(64))[:wrong_length(len(data))]
         bus.send(can.Message(arbitration_id=frame_id, data=data, is_extended_id=False, is_fd=is_fd))
 
 
@@ -112,14 +116,15 @@ send(VALID + 1, [raw(1000.0)] * n_inputs)          # beyond every input's limit
 send(VALID + 2, [raw(0.125)] * n_inputs)           # valid...
 sent[VALID + 2] = [0.125] * n_inputs
 send(VALID + 2, [raw(0.125)] * n_inputs)           # ...and again: a duplicate
-# Malformed frames, each counted: a wrong length on every frame (for CAN FD
-# also a length that is none of CAN FD's, and classic frames where CAN FD
-# ones belong).
-malformed = [dict(length=7)]
+# Malformed commands, every frame counted: (wrong_length, is_fd, logged),
+# logged telling whether the loop sees a frame (and logs it) at all.
+malformed = [(lambda n: n - 1, False, True)]  # one byte short
 if FD:
-    malformed = [dict(length=12), dict(length=13), dict(length=8, is_fd=False)]
-for k, fault in enumerate(malformed):
-    send(VALID + 3 + k, [raw(0.0)] * n_inputs, **fault)
+    malformed = [(lambda n: max(k for k in FD_LENGTHS if k < n), True, True),  # a shorter CAN FD length
+                 (lambda n: 13, True, False),  # no CAN FD length: the datagram is refused whole
+                 (lambda n: min(n, 8), False, True)]  # classic frames where CAN FD ones belong
+for k, (wrong_length, is_fd, _) in enumerate(malformed):
+    send(VALID + 3 + k, [raw(0.0)] * n_inputs, wrong_length, is_fd)
 take_states(0.3)
 bus.shutdown()  # python-can raises on the datagram that follows
 with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:  # not msgpack at all
@@ -174,8 +179,7 @@ else:
                 logged[(sig["seq"]["value"], names.index(n))] = sig[n]["value"]
         elif m.arbitration_id == STATE_ID:
             states.append((sig["seq"]["value"], sig["t"]["value"]))
-    # A datagram whose length is no CAN FD length never becomes a frame, nor a line of the log.
-    logged_faults = [f for f in malformed if f.get("length") != 13]
+    logged_faults = [fault for fault in malformed if fault[2]]
     check(len(ill_formed) == len(logged_faults) * len(commands) and all(m.arbitration_id >= COMMAND_ID for m in ill_formed),
           f"the only ill-formed frames in the log are the peer's malformed command frames ({len(ill_formed)})")
     check(not disagreements, f"candied decodes the well-formed frames as {kind} frames of the DBC, and only those "
