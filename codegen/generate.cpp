@@ -72,7 +72,7 @@ Generated generate(const std::string& model_path, const GenerateOptions& options
   g.code = emit_cpp(g.model, g.analysis);
   if (!g.model.inputs.empty() && !g.model.outputs.empty()) {
     g.code.interface_files = emit_lcm(g.model);
-    for (GeneratedFile& f : emit_can(g.model)) g.code.interface_files.push_back(std::move(f));
+    for (GeneratedFile& f : emit_can(g.model, options.can_fd)) g.code.interface_files.push_back(std::move(f));
   }
   return g;
 }

@@ -18,6 +18,7 @@ struct GenerateOptions {
   std::optional<std::string> ali3p_projection;  // bayo | cuadrado
   std::optional<std::string> ali3p_integrator;  // trapezoidal | generalized_alpha
   bool project_initial = false;
+  bool can_fd = false;  // the CAN layout in CAN FD frames rather than classic ones
 };
 
 struct Generated {

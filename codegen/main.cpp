@@ -12,9 +12,9 @@ namespace {
 
 constexpr const char* kUsage = R"(usage:
   mbrt gen MODEL.yaml -o DIR [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
-                      [--ali3p-projection bayo|cuadrado] [--ali3p-integrator trapezoidal|generalized_alpha]
+                      [--ali3p-projection bayo|cuadrado] [--ali3p-integrator trapezoidal|generalized_alpha] [--can-fd]
   mbrt sim MODEL.yaml [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
-                      [--ali3p-projection P] [--ali3p-integrator I]
+                      [--ali3p-projection P] [--ali3p-integrator I] [--can-fd]
                       [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--verbose]
   mbrt hil MODEL.yaml [generation options] (--lcm URL | --can BUS [--can-log F])
                       [--rate HZ] [--duration S] [--report F.json] [--state-channel C] [--command-channel C]
@@ -30,7 +30,8 @@ sim generates, compiles (cached by content hash under $MBRT_CACHE_DIR or
 ~/.cache/mbrt) and runs the model; its last line on stdout is a JSON summary.
 hil runs the model in a real-time loop that publishes its outputs and takes
 commands over LCM or a CAN bus (BUS: udp://GROUP:PORT or a SocketCAN interface
-such as vcan0); stub runs a PD controller for it; both print a JSON report.
+such as vcan0; --can-fd: CAN FD frames of up to 64 bytes, which hil and stub
+must both be given); stub runs a PD controller for it; both print a JSON report.
 See docs/hil.md.
 )";
 
@@ -81,6 +82,7 @@ int run(const std::vector<std::string>& args) {
     else if (a == "--h") gen.step = parse_number(a, value());
     else if (a == "--euler-updates") gen.euler_updates = parse_integer(a, value());
     else if (a == "--project-initial") gen.project_initial = true;
+    else if (a == "--can-fd") gen.can_fd = true;
     else if (a == "--name") gen.name = value();
     else if (a == "--ali3p-projection") gen.ali3p_projection = value();
     else if (a == "--ali3p-integrator") gen.ali3p_integrator = value();

@@ -273,14 +273,14 @@ class LcmLink final : public Link {
 
 class CanLink final : public Link {
  public:
-  explicit CanLink(const LinkOptions& o) : bus_(open_can_bus(o.can_bus)) {}
+  explicit CanLink(const LinkOptions& o) : bus_(open_can_bus(o.can_bus, model::can::kLayout.fd)) {}
 
   // Like LCM's: waits up to wait_ms for the first frames, takes those
   // waiting, returns. A state is whole when all its output frames follow
   // its header frame.
   void receive(Controller& c, int wait_ms) override {
     const std::int64_t until = monotonic_ns() + wait_ms * 1000000ll;
-    can_frame frames[64];
+    canfd_frame frames[64];
     int n = 0;
     while ((n = bus_->receive(frames, 64)) == 0 && monotonic_ns() < until) {
       std::this_thread::sleep_for(std::chrono::microseconds(100));
@@ -296,26 +296,27 @@ class CanLink final : public Link {
     return bytes;
   }
 
-  // The first frame alone, cut to a wrong length (0 to 7 bytes).
+  // The first frame alone, cut short (a wrong length; for CAN FD, one that may
+  // be no CAN FD length at all).
   std::vector<unsigned char> garbage(std::vector<unsigned char> bytes, std::mt19937_64& random) override {
-    can_frame f;
+    canfd_frame f;
     std::memcpy(&f, bytes.data(), sizeof f);
-    f.len = static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, 7)(random));
+    f.len = static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, f.len - 1)(random));
     bytes.resize(sizeof f);
     std::memcpy(bytes.data(), &f, sizeof f);
     return bytes;
   }
 
   void send(const std::vector<unsigned char>& bytes) override {
-    for (std::size_t at = 0; at + sizeof(can_frame) <= bytes.size(); at += sizeof(can_frame)) {
-      can_frame f;
+    for (std::size_t at = 0; at + sizeof(canfd_frame) <= bytes.size(); at += sizeof(canfd_frame)) {
+      canfd_frame f;
       std::memcpy(&f, bytes.data() + at, sizeof f);
       bus_->send(f);
     }
   }
 
  private:
-  void take(Controller& c, const can_frame& f) {
+  void take(Controller& c, const canfd_frame& f) {
     mbrt::can::StateHeader h;
     if (model::can::unpack_state(f, pending_, h) != mbrt::can::FrameCheck::ok) return;
     const int index = static_cast<int>((f.can_id & CAN_SFF_MASK) - model::can::kStateId);

@@ -19,9 +19,9 @@ SocketFd::SocketFd(int domain, int type, int protocol) : fd(::socket(domain, typ
 
 SocketFd::~SocketFd() { ::close(fd); }
 
-std::unique_ptr<CanBus> open_can_bus(const std::string& spec) {
+std::unique_ptr<CanBus> open_can_bus(const std::string& spec, bool fd) {
   const std::string udp = "udp://";
-  if (spec.rfind(udp, 0) != 0) return open_socketcan_bus(spec);
+  if (spec.rfind(udp, 0) != 0) return open_socketcan_bus(spec, fd);
   const std::string address = spec.substr(udp.size());
   const std::size_t colon = address.rfind(':');
   if (colon == std::string::npos) throw std::runtime_error("expected udp://GROUP:PORT, got '" + spec + "'");

@@ -37,7 +37,7 @@ class UdpMulticastBus final : public CanBus {
     if (setsockopt(socket_.fd, IPPROTO_IP, IP_ADD_MEMBERSHIP, &request, sizeof request) != 0) throw_errno("IP_ADD_MEMBERSHIP " + group);
   }
 
-  bool send(const can_frame& f) noexcept override {
+  bool send(const canfd_frame& f) noexcept override {
     timespec now;
     clock_gettime(CLOCK_REALTIME, &now);
     const std::size_t n = encode_can_udp(f, static_cast<double>(now.tv_sec) + now.tv_nsec * 1e-9, buffer_);
@@ -45,7 +45,7 @@ class UdpMulticastBus final : public CanBus {
            static_cast<ssize_t>(n);
   }
 
-  int receive(can_frame* frames, int max) noexcept override {
+  int receive(canfd_frame* frames, int max) noexcept override {
     int n = 0;
     while (n < max) {
       const ssize_t size = recv(socket_.fd, buffer_, sizeof buffer_, MSG_DONTWAIT | MSG_TRUNC);

@@ -1,6 +1,9 @@
 #include "mbrt/rt/can_udp_wire.hpp"
 
+#include <algorithm>
 #include <cstring>
+
+#include <mbrt/can_frames.hpp>
 
 namespace mbrt::rt {
 
@@ -99,7 +102,7 @@ bool is(const std::uint8_t* key, std::size_t n, const char* name) noexcept {
 
 }  // namespace
 
-std::size_t encode_can_udp(const can_frame& f, double timestamp, std::uint8_t* out) noexcept {
+std::size_t encode_can_udp(const canfd_frame& f, double timestamp, std::uint8_t* out) noexcept {
   std::uint8_t* p = out;
   *p++ = 0x8b;  // map of 11
   p = put_key(p, "timestamp");
@@ -114,29 +117,30 @@ std::size_t encode_can_udp(const can_frame& f, double timestamp, std::uint8_t* o
   p = put_bool(p, "is_error_frame", f.can_id & CAN_ERR_FLAG);
   p = put_key(p, "channel");
   *p++ = 0xc0;
-  const std::uint8_t len = f.len > CAN_MAX_DLEN ? CAN_MAX_DLEN : f.len;
+  const bool fd = mbrt::can::is_fd(f);
+  const std::uint8_t len = std::min(f.len, static_cast<std::uint8_t>(fd ? CANFD_MAX_DLEN : CAN_MAX_DLEN));
   p = put_uint(p, "dlc", len);
   p = put_key(p, "data");
   *p++ = 0xc4;
   *p++ = len;
   std::memcpy(p, f.data, len);
   p += len;
-  p = put_bool(p, "is_fd", false);
-  p = put_bool(p, "bitrate_switch", false);
-  p = put_bool(p, "error_state_indicator", false);
+  p = put_bool(p, "is_fd", fd);
+  p = put_bool(p, "bitrate_switch", fd && (f.flags & CANFD_BRS));
+  p = put_bool(p, "error_state_indicator", fd && (f.flags & CANFD_ESI));
   return static_cast<std::size_t>(p - out);
 }
 
-bool decode_can_udp(const std::uint8_t* data, std::size_t size, can_frame& f) noexcept {
+bool decode_can_udp(const std::uint8_t* data, std::size_t size, canfd_frame& f) noexcept {
   Reader r{data, data + size};
   const std::uint8_t t = r.tag();
   std::size_t entries = 0;
   if ((t & 0xf0) == 0x80) entries = t & 0x0f;
   else if (t == 0xde) entries = r.be(2);
   else return false;
-  f = can_frame{};
+  f = canfd_frame{};
   double id = -1, dlc = -1;
-  bool extended = false, remote = false, error = false, fd = false, has_data = false;
+  bool extended = false, remote = false, error = false, fd = false, brs = false, esi = false, has_data = false;
   std::size_t len = 0;
   for (std::size_t i = 0; i < entries && r.ok; ++i) {
     std::size_t key_size = 0;
@@ -150,18 +154,22 @@ bool decode_can_udp(const std::uint8_t* data, std::size_t size, can_frame& f) no
     else if (is(key, key_size, "is_remote_frame")) remote = v != 0;
     else if (is(key, key_size, "is_error_frame")) error = v != 0;
     else if (is(key, key_size, "is_fd")) fd = v != 0;
+    else if (is(key, key_size, "bitrate_switch")) brs = v != 0;
+    else if (is(key, key_size, "error_state_indicator")) esi = v != 0;
     else if (is(key, key_size, "dlc")) dlc = v;
     else if (is(key, key_size, "data")) {
-      if (!bytes || n > CAN_MAX_DLEN) return false;
+      if (!bytes || n > CANFD_MAX_DLEN) return false;
       std::memcpy(f.data, bytes, n);
       len = n;
       has_data = true;
     }
   }
   const double max_id = extended ? CAN_EFF_MASK : CAN_SFF_MASK;
-  if (!r.ok || r.p != r.end || fd || !has_data || !(id >= 0 && id <= max_id) || dlc != static_cast<double>(len)) {
+  const bool length_ok = fd ? mbrt::can::is_fd_length(static_cast<int>(len)) && !remote : len <= CAN_MAX_DLEN;
+  if (!r.ok || r.p != r.end || !length_ok || !has_data || !(id >= 0 && id <= max_id) || dlc != static_cast<double>(len)) {
     return false;
   }
+  if (fd) f.flags = CANFD_FDF | (brs ? CANFD_BRS : 0) | (esi ? CANFD_ESI : 0);
   f.can_id = static_cast<canid_t>(id) | (extended ? CAN_EFF_FLAG : 0) | (remote ? CAN_RTR_FLAG : 0) | (error ? CAN_ERR_FLAG : 0);
   f.len = static_cast<std::uint8_t>(len);
   return true;

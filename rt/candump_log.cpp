@@ -3,9 +3,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <mbrt/can_frames.hpp>
+
 namespace mbrt::rt {
 
-int format_candump_line(const can_frame& f, double timestamp, const char* interface, char* out) noexcept {
+int format_candump_line(const canfd_frame& f, double timestamp, const char* interface, char* out) noexcept {
   static constexpr char kHex[] = "0123456789ABCDEF";
   const double whole = std::floor(timestamp);
   const long micros = std::lround((timestamp - whole) * 1e6);
@@ -13,10 +15,15 @@ int format_candump_line(const can_frame& f, double timestamp, const char* interf
   int n = std::snprintf(out, kCandumpLineSize, extended ? "(%ld.%06ld) %.16s %08X#" : "(%ld.%06ld) %.16s %03X#",
                         static_cast<long>(whole) + micros / 1000000, micros % 1000000, interface,
                         f.can_id & (extended ? CAN_EFF_MASK : CAN_SFF_MASK));
+  const bool fd = mbrt::can::is_fd(f);
+  if (fd) {
+    out[n++] = '#';
+    out[n++] = kHex[f.flags & (CANFD_BRS | CANFD_ESI)];
+  }
   if (f.can_id & CAN_RTR_FLAG) {
     out[n++] = 'R';
   } else {
-    for (int i = 0; i < f.len && i < CAN_MAX_DLEN; ++i) {
+    for (int i = 0; i < f.len && i < (fd ? CANFD_MAX_DLEN : CAN_MAX_DLEN); ++i) {
       out[n++] = kHex[f.data[i] >> 4];
       out[n++] = kHex[f.data[i] & 15];
     }
@@ -34,7 +41,7 @@ CandumpLog::CandumpLog(const std::string& path, const std::string& interface)
 
 CandumpLog::~CandumpLog() { std::fclose(file_); }
 
-void CandumpLog::write(const can_frame& f, double timestamp) noexcept {
+void CandumpLog::write(const canfd_frame& f, double timestamp) noexcept {
   char line[kCandumpLineSize];
   const int n = format_candump_line(f, timestamp, interface_.c_str(), line);
   // Only the loop writes: no need for stdio's stream lock.

@@ -41,9 +41,9 @@ constexpr const char* kUsage = R"(usage: hil (--lcm URL | --can BUS [--can-log F
 
 // Commands taken per cycle at most: a flood cannot stretch a cycle unboundedly.
 constexpr int kMaxCommandsPerCycle = 32;
-// Over CAN a command is one frame per input, and the bus carries our own
-// state frames back too (multicast loop).
-constexpr int kMaxFramesPerCycle = 2 * kMaxCommandsPerCycle * (model::kInputs + model::can::kStateFrames);
+// Over CAN a command takes kCommandFrames frames, and the bus carries our
+// own state frames back too (multicast loop).
+constexpr int kMaxFramesPerCycle = 2 * kMaxCommandsPerCycle * (model::can::kCommandFrames + model::can::kStateFrames);
 // Publication times of the last states, by seq: a CAN command's age counts
 // from the state it answers.
 constexpr std::size_t kPublishedStates = 1024;
@@ -100,7 +100,7 @@ struct Loop {
   std::vector<unsigned char> buffer;
   // CAN only:
   model::can::StateFrames state_frames{};
-  std::array<can_frame, kMaxFramesPerCycle> received{};
+  std::array<canfd_frame, kMaxFramesPerCycle> received{};
   CanCommandAssembler<model::kInputs> assembler;
   std::array<std::int64_t, kPublishedStates> published_ns{};
   std::array<std::int64_t, kPublishedStates> published_seq{};
@@ -151,11 +151,11 @@ struct CanLink {
   std::unique_ptr<CanBus> bus;
   std::unique_ptr<CandumpLog> log;
 
-  explicit CanLink(const LinkOptions& o) : bus(open_can_bus(o.can_bus)) {
+  explicit CanLink(const LinkOptions& o) : bus(open_can_bus(o.can_bus, model::can::kLayout.fd)) {
     const std::string udp = "udp://";
     if (!o.can_log.empty()) log = std::make_unique<CandumpLog>(o.can_log, o.can_bus.rfind(udp, 0) == 0 ? "udp0" : o.can_bus);
   }
-  void logged(const can_frame& f) noexcept {
+  void logged(const canfd_frame& f) noexcept {
     if (log) log->write(f, realtime_s());
   }
 };
@@ -177,13 +177,13 @@ void receive_can_commands(Loop& loop, CanLink& link, std::int64_t cycle) {
   const int n = link.bus->receive(loop.received.data(), static_cast<int>(loop.received.size()));
   for (; loop.undecodable < link.bus->undecodable(); ++loop.undecodable) loop.gate.reject_malformed();
   for (int k = 0; k < n; ++k) {
-    const can_frame& f = loop.received[static_cast<std::size_t>(k)];
-    mbrt::can::CommandSignal s;
-    const mbrt::can::FrameCheck c = model::can::unpack_command(f, s);
+    const canfd_frame& f = loop.received[static_cast<std::size_t>(k)];
+    mbrt::can::CommandPart part;
+    const mbrt::can::FrameCheck c = model::can::unpack_command(f, part);
     if (c == mbrt::can::FrameCheck::unknown_id) continue;  // other traffic on the bus, our own states included
     link.logged(f);
     if (c == mbrt::can::FrameCheck::malformed) loop.gate.reject_malformed();
-    else if (loop.assembler.add(s)) offer_can_command(loop, cycle);
+    else if (loop.assembler.add(part)) offer_can_command(loop, cycle);
   }
 }
 
@@ -194,7 +194,7 @@ void send_can_state(Loop& loop, CanLink& link, std::int64_t cycle) {
   const std::size_t slot = static_cast<std::size_t>(cycle) % kPublishedStates;
   loop.published_seq[slot] = cycle;
   loop.published_ns[slot] = monotonic_ns();
-  for (const can_frame& f : loop.state_frames) {
+  for (const canfd_frame& f : loop.state_frames) {
     link.bus->send(f);
     link.logged(f);
   }

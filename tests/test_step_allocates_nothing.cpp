@@ -2,8 +2,8 @@
 // malloc). The same holds for the HIL loop's per-cycle work around the
 // step: outputs, packing and encoding the state message, decoding and
 // unpacking a command, the command gate and the timing histogram; over
-// CAN, packing the state frames, the UDP wire format both ways, the candump
-// line and log, unpacking and assembling command frames.
+// CAN, classic and CAN FD, packing the state frames, the UDP wire format both
+// ways, the candump line and log, unpacking and assembling command frames.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -17,6 +17,7 @@
 
 #include "a01_pendulum.hpp"
 #include "actuated_can.hpp"
+#include "actuated_fd_can.hpp"
 #include "actuated_lcm.hpp"
 #include "allocation_counter.hpp"
 #include "four_bar.hpp"
@@ -91,14 +92,17 @@ TEST_CASE("the HIL cycle around the step allocates nothing") {
   CHECK(seen == 0);
 }
 
-TEST_CASE("the HIL cycle over CAN allocates nothing") {
+// The CAN part of the cycle, with the frames and packing of one layout
+// (classic or CAN FD) of the actuated model.
+template <class StateFrames, class CommandFrames, class PackState, class PackCommand, class UnpackCommand>
+void check_can_cycle(PackState pack_state, PackCommand pack_command, UnpackCommand unpack_command) {
   namespace m = mbrt::models::actuated;
   m::State s = m::initial_state();
   mbrt::rt::CommandGate<m::kInputs> gate(m::kInputInfo, {50000000, 50000000});
   mbrt::rt::CanCommandAssembler<m::kInputs> assembler;
   m::Outputs y{};
-  m::can::StateFrames state_frames;
-  m::can::CommandFrames command_frames;
+  StateFrames state_frames;
+  CommandFrames command_frames;
   std::uint8_t datagram[mbrt::rt::kCanUdpMaxDatagram];
   char line[mbrt::rt::kCandumpLineSize];
   mbrt::rt::CandumpLog log("/dev/null", "udp0");
@@ -109,15 +113,15 @@ TEST_CASE("the HIL cycle over CAN allocates nothing") {
       // A controller's command frames cross the UDP wire; the loop decodes,
       // logs, unpacks and assembles them, and the gate judges the command.
       const m::Inputs u{cycle % 2 ? 1.0 : std::nan(""), 0.0, 0.0};  // every other one is refused
-      m::can::pack_command(static_cast<std::uint16_t>(cycle), static_cast<std::uint16_t>(cycle), u, command_frames);
-      for (const can_frame& sent : command_frames) {
-        can_frame f;
+      pack_command(static_cast<std::uint16_t>(cycle), static_cast<std::uint16_t>(cycle), u, command_frames);
+      for (const canfd_frame& sent : command_frames) {
+        canfd_frame f;
         const std::size_t n = mbrt::rt::encode_can_udp(sent, 1.0, datagram);
         if (!mbrt::rt::decode_can_udp(datagram, n, f)) ++malformed;
         mbrt::rt::format_candump_line(f, 1.5, "udp0", line);
         log.write(f, 1.5);
-        mbrt::can::CommandSignal c;
-        if (m::can::unpack_command(f, c) != mbrt::can::FrameCheck::ok) ++malformed;
+        mbrt::can::CommandPart c;
+        if (unpack_command(f, c) != mbrt::can::FrameCheck::ok) ++malformed;
         else if (assembler.add(c)) {
           applied += gate.offer(assembler.sequence(), 0, assembler.values(), cycle * 1000000) ==
                      mbrt::rt::CommandVerdict::applied;
@@ -126,12 +130,22 @@ TEST_CASE("the HIL cycle over CAN allocates nothing") {
       s.inputs = gate.inputs_for_cycle(cycle * 1000000);
       m::step(s);
       m::outputs(s, y);
-      m::can::pack_state(y, {static_cast<std::uint16_t>(cycle), 0, s.t}, state_frames);
-      for (const can_frame& f : state_frames) mbrt::rt::encode_can_udp(f, 1.0, datagram);
+      pack_state(y, {static_cast<std::uint16_t>(cycle), 0, s.t}, state_frames);
+      for (const canfd_frame& f : state_frames) mbrt::rt::encode_can_udp(f, 1.0, datagram);
     }
     seen = counter.count();
   }
   CHECK(malformed == 0);
   CHECK(applied == 5000);
   CHECK(seen == 0);
+}
+
+TEST_CASE("the HIL cycle over CAN allocates nothing") {
+  namespace c = mbrt::models::actuated::can;
+  check_can_cycle<c::StateFrames, c::CommandFrames>(c::pack_state, c::pack_command, c::unpack_command);
+}
+
+TEST_CASE("the HIL cycle over CAN FD allocates nothing") {
+  namespace c = mbrt::models::actuated_fd::can;
+  check_can_cycle<c::StateFrames, c::CommandFrames>(c::pack_state, c::pack_command, c::unpack_command);
 }

@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 """Closed-loop HIL scenarios: `mbrt hil` runs a model in its real-time loop,
 `mbrt stub` runs a PD controller for it in another process, both over LCM
-(or, given --can BUS, a CAN bus) on loopback (run inside
+(or, given --can BUS, a CAN bus; with --can-fd, in CAN FD frames) on loopback (run inside
 scripts/in-private-network). Each scenario injects
 one kind of fault and checks, from the two JSON reports, that the loop kept
 running, that nothing non-finite entered the state, that the simulator
 counted exactly what the controller did wrong, and that control resumed.
 
-usage: closed_loop.py MBRT MODEL WORK_DIR SCENARIO [--can BUS]
+usage: closed_loop.py MBRT MODEL WORK_DIR SCENARIO [--can BUS [--can-fd]]
 """
 import json
 import math
@@ -30,7 +30,7 @@ TIMEOUT_S = 0.05 if sys.argv[4] == "crash_restart" else MAX_AGE_S
 AMPLITUDE = 0.5    # reference q_ref = A sin(2 pi 0.5 t) for every joint
 
 mbrt, model, work, scenario = sys.argv[1:5]
-LINK = sys.argv[5:7] if len(sys.argv) > 5 else ["--lcm", LCM_URL]
+LINK = sys.argv[5:] if len(sys.argv) > 5 else ["--lcm", LCM_URL]
 env = environment(work)
 
 

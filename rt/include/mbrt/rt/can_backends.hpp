@@ -11,8 +11,8 @@ namespace mbrt::rt {
 
 // CAN over UDP multicast in python-can's udp_multicast format (can_udp_bus.cpp).
 std::unique_ptr<CanBus> open_udp_multicast_bus(const std::string& group, int port);
-// Raw SocketCAN on an interface such as vcan0 (socketcan_bus.cpp).
-std::unique_ptr<CanBus> open_socketcan_bus(const std::string& interface);
+// Raw SocketCAN on an interface such as vcan0 (socketcan_bus.cpp); fd as for open_can_bus().
+std::unique_ptr<CanBus> open_socketcan_bus(const std::string& interface, bool fd);
 
 // A non-blocking socket, closed with its owner.
 class SocketFd {

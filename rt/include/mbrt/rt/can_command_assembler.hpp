@@ -1,7 +1,8 @@
 // Whole commands from CAN command frames (mbrt/can_frames.hpp): one frame
-// per input, each carrying the command's 16-bit sequence number and the
-// 16-bit seq of the state it answers. A command is whole when a frame of
-// every input with the same sequence number has arrived; a frame of another
+// per input in classic CAN, one per 15 inputs in CAN FD, each carrying the
+// command's 16-bit sequence number and the 16-bit seq of the state it
+// answers. A command is whole when the frames of every input with the same
+// sequence number have arrived; a frame of another
 // sequence number starts over (the unfinished command is lost, and the
 // command gate counts the gap as missing). Sequence numbers are unwrapped
 // to 64 bits around the last whole command, so the gate orders them as it
@@ -23,18 +24,22 @@ inline std::int64_t unwrap16(std::int64_t near, std::uint16_t low) noexcept {
 template <std::size_t N>
 class CanCommandAssembler {
  public:
-  // True when s completes a command; then sequence(), state_seq() and values() describe it.
-  bool add(const mbrt::can::CommandSignal& s) noexcept {
-    if (count_ == 0 || s.seq != seq_) {
-      seq_ = s.seq;
-      state_seq_ = s.state_seq;
+  // True when p completes a command; then sequence(), state_seq() and values() describe it.
+  bool add(const mbrt::can::CommandPart& p) noexcept {
+    if (count_ == 0 || p.seq != seq_) {
+      seq_ = p.seq;
+      state_seq_ = p.state_seq;
       have_.fill(false);
       count_ = 0;
     }
-    if (have_[static_cast<std::size_t>(s.input)]) return false;  // a repeated frame within one command
-    have_[static_cast<std::size_t>(s.input)] = true;
-    values_[static_cast<std::size_t>(s.input)] = s.value;
-    if (++count_ < N) return false;
+    const std::size_t first = static_cast<std::size_t>(p.first_input);
+    if (have_[first]) return false;  // a repeated frame within one command
+    for (std::size_t i = 0; i < static_cast<std::size_t>(p.count); ++i) {
+      have_[first + i] = true;
+      values_[first + i] = p.values[i];
+    }
+    count_ += static_cast<std::size_t>(p.count);
+    if (count_ < N) return false;
     count_ = 0;  // a repeat of the whole command is assembled again, and judged a duplicate
     last_ = unwrap16(last_, seq_);
     return true;

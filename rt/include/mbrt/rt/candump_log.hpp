@@ -1,5 +1,7 @@
-// Writes CAN frames as candump log lines, `(SECONDS.MICROS) IFACE ID#DATA`
-// (can-utils `candump -l`, read by python-can's CanutilsLogReader). The
+// Writes CAN frames as candump log lines, `(SECONDS.MICROS) IFACE ID#DATA`,
+// CAN FD frames `ID##FDATA` with F their CANFD_BRS | CANFD_ESI flags in
+// one hex digit (can-utils `candump -l`, read by python-can's
+// CanutilsLogReader). The
 // file is opened at start-up (throws there); write() formats into a fixed
 // buffer and goes to a stdio stream with its own fixed buffer, unlocked (only
 // the loop writes), so the loop allocates nothing and takes no lock; a full
@@ -14,8 +16,8 @@
 namespace mbrt::rt {
 
 // One line, NUL-terminated, into out (at least kCandumpLineSize bytes); returns its length.
-inline constexpr int kCandumpLineSize = 64;
-int format_candump_line(const can_frame& f, double timestamp, const char* interface, char* out) noexcept;
+inline constexpr int kCandumpLineSize = 192;
+int format_candump_line(const canfd_frame& f, double timestamp, const char* interface, char* out) noexcept;
 
 class CandumpLog {
  public:
@@ -24,7 +26,7 @@ class CandumpLog {
   CandumpLog(const CandumpLog&) = delete;
   CandumpLog& operator=(const CandumpLog&) = delete;
 
-  void write(const can_frame& f, double timestamp) noexcept;
+  void write(const canfd_frame& f, double timestamp) noexcept;
 
  private:
   std::FILE* file_;
