@@ -119,3 +119,65 @@ TEST_CASE("joints and torques that need orientation are refused on particles") {
                           "p.yaml")),
       doctest::Contains("must be its position"), ModelError);
 }
+
+TEST_CASE("staggered-nps: the tree takes each link's pin, the closing joint becomes the cut rows") {
+  Model m = chain(4, true);
+  m.solver.scheme = "staggered-nps";
+  const Analysis a = analyse(m);
+  REQUIRE(a.tree.order.size() == 4);
+  for (int i = 0; i < 4; ++i) {
+    const TreeBody& tb = a.tree.order[static_cast<size_t>(i)];
+    CHECK(tb.body == i);
+    CHECK(tb.parent == (i == 0 ? kGround : i - 1));
+    CHECK(tb.joint == i);
+    CHECK(tb.child_is_body2);
+    CHECK(tb.dofs == 1);
+  }
+  CHECK(a.tree.cut_blocks == std::vector<int>{4});
+  CHECK(a.tree.cut_rows == 3);
+}
+
+TEST_CASE("staggered-nps: a body reached from its joint's body2 side, and a body no tree joint reaches") {
+  Model m = parse_model(R"(name: t
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1], position: [0, 0, 0]}
+  - {name: b, mass: 1, inertia: [1, 1, 1], position: [1, 0, 0]}
+  - {name: p, mass: 1, position: [5, 0, 0]}
+joints:
+  - {name: hinge, type: revolute, body1: b, body2: a, point: [0.5, 0, 0], axis: [0, 0, 1]}
+  - {name: rope, type: distance, body1: a, body2: p, point1: [0, 0, 0], point2: [5, 0, 0]}
+solver: {scheme: staggered-nps}
+)",
+                        "t.yaml");
+  const Analysis an = analyse(m);
+  REQUIRE(an.tree.order.size() == 3);
+  // No tree joint reaches ground: a is free, b hangs from it on the hinge
+  // (as body1, the hinge's body2 being the parent), the particle p is free.
+  CHECK(an.tree.order[0].body == 0);
+  CHECK(an.tree.order[0].joint == -1);
+  CHECK(an.tree.order[0].dofs == 6);
+  CHECK(an.tree.order[1].body == 1);
+  CHECK(an.tree.order[1].parent == 0);
+  CHECK_FALSE(an.tree.order[1].child_is_body2);
+  CHECK(an.tree.order[2].body == 2);
+  CHECK(an.tree.order[2].dofs == 3);
+  CHECK(an.tree.cut_blocks == std::vector<int>{1});
+}
+
+TEST_CASE("staggered-nps refuses more cut rows than it solves densely, naming staggered-pcst") {
+  Model m = chain(2, false);
+  m.solver.scheme = "staggered-nps";
+  // Eleven extra spherical joints between the two links: 33 cut rows.
+  for (int k = 0; k < 11; ++k) {
+    Joint j = m.joints[1];
+    j.name = "extra" + std::to_string(k);
+    j.type = JointType::spherical;
+    m.joints.push_back(j);
+  }
+  try {
+    (void)analyse(m);
+    FAIL("expected a ModelError");
+  } catch (const ModelError& e) {
+    CHECK(std::string(e.what()).find("at most 30; this model has 33 (use staggered-pcst)") != std::string::npos);
+  }
+}

@@ -22,6 +22,7 @@
 #include "andrews_ali3p.hpp"
 #include "andrews_baumgarte.hpp"
 #include "andrews_blajer.hpp"
+#include "andrews_nps.hpp"
 #include "andrews_pcst.hpp"
 #include "model_adapter.hpp"
 
@@ -30,6 +31,7 @@ namespace {
 BENCH_MODEL(Pcst, andrews_pcst);
 BENCH_MODEL(Baumgarte, andrews_baumgarte);
 BENCH_MODEL(Blajer, andrews_blajer);
+BENCH_MODEL(Nps, andrews_nps);
 BENCH_MODEL(Ali3p, andrews_ali3p);
 
 // Consistent initial angles q0 of the Test Set (beta, Theta, gamma, Phi, delta, Omega, epsilon).
@@ -111,6 +113,13 @@ TEST_CASE("Andrews' squeezer, h = 1e-5: the Test Set solution at t = 0.03 in eve
   CHECK(pcst.rate_error < 2e-3);
   CHECK(pcst.balance_error < 3e-5);
   CHECK(pcst.violation < 1e-8);
+
+  const Result nps = run<Nps>();
+  REQUIRE(nps.all_ok);
+  CHECK(nps.angle_error < 1e-4);
+  CHECK(nps.rate_error < 2e-3);
+  CHECK(nps.balance_error < 3e-5);
+  CHECK(nps.violation < 1e-8);
 
   const Result baumgarte = run<Baumgarte>();
   REQUIRE(baumgarte.all_ok);

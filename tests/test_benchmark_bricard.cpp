@@ -21,6 +21,7 @@
 #include "bricard_ali3p.hpp"
 #include "bricard_baumgarte.hpp"
 #include "bricard_blajer.hpp"
+#include "bricard_nps.hpp"
 #include "bricard_pcst.hpp"
 #include "model_adapter.hpp"
 
@@ -29,6 +30,7 @@ namespace {
 BENCH_MODEL(Pcst, bricard_pcst);
 BENCH_MODEL(Baumgarte, bricard_baumgarte);
 BENCH_MODEL(Blajer, bricard_blajer);
+BENCH_MODEL(Nps, bricard_nps);
 BENCH_MODEL(Ali3p, bricard_ali3p);
 
 struct Result {
@@ -87,6 +89,7 @@ void check_common(const Result& r, double energy_tol, double phi_tol, double phi
 // Measured values and the commands that reproduce them: docs/benchmarks.md.
 TEST_CASE("A04 Bricard, h = 1e-3, 100 s: energy conserved, violations bounded, the mechanism swings") {
   check_common(run<Pcst>(), 1e-5, 1e-8, 1e-8);
+  check_common(run<Nps>(), 1e-5, 1e-8, 1e-8);
   check_common(run<Baumgarte>(), 1e-4, 1e-7, 1e-5);
   check_common(run<Blajer>(), 1e-5, 1e-13, 1e-8);
   check_common(run<Ali3p>(), 1e-5, 1e-13, 1e-12);

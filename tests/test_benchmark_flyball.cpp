@@ -27,6 +27,7 @@
 #include "flyball_ali3p.hpp"
 #include "flyball_baumgarte.hpp"
 #include "flyball_blajer.hpp"
+#include "flyball_nps.hpp"
 #include "flyball_pcst.hpp"
 #include "model_adapter.hpp"
 
@@ -35,6 +36,7 @@ namespace {
 BENCH_MODEL(Pcst, flyball_pcst);
 BENCH_MODEL(Baumgarte, flyball_baumgarte);
 BENCH_MODEL(Blajer, flyball_blajer);
+BENCH_MODEL(Nps, flyball_nps);
 BENCH_MODEL(Ali3p, flyball_ali3p);
 
 using mbrt::Mat3;
@@ -158,7 +160,8 @@ TEST_CASE("A05 flyball governor, damped, h = 1e-4, 10 s: energy balance and angu
   const Result baumgarte = run<Baumgarte>(kDamping);
   const Result blajer = run<Blajer>(kDamping);
   const Result ali3p = run<Ali3p>(kDamping);
-  for (const Result* r : {&pcst, &baumgarte, &blajer, &ali3p}) {
+  const Result nps = run<Nps>(kDamping);
+  for (const Result* r : {&pcst, &baumgarte, &blajer, &ali3p, &nps}) {
     REQUIRE(r->all_ok);
     CHECK(r->energy_loss > 1e-3);      // the dampers take energy out
     CHECK(r->max_energy_rise < 1e-6);  // and it never comes back
@@ -178,4 +181,7 @@ TEST_CASE("A05 flyball governor, damped, h = 1e-4, 10 s: energy balance and angu
   CHECK(ali3p.balance_error < 2e-5);
   CHECK(ali3p.lz_error < 2e-6);
   CHECK(ali3p.violation < 2e-11);
+  CHECK(nps.balance_error < 2e-5);
+  CHECK(nps.lz_error < 2e-6);
+  CHECK(nps.violation < 1e-9);
 }

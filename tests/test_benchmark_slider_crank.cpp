@@ -33,6 +33,7 @@
 #include "slider_crank_ali3p.hpp"
 #include "slider_crank_baumgarte.hpp"
 #include "slider_crank_blajer.hpp"
+#include "slider_crank_nps.hpp"
 #include "slider_crank_pcst.hpp"
 #include "model_adapter.hpp"
 
@@ -41,6 +42,7 @@ namespace {
 BENCH_MODEL(Pcst, slider_crank_pcst);
 BENCH_MODEL(Baumgarte, slider_crank_baumgarte);
 BENCH_MODEL(Blajer, slider_crank_blajer);
+BENCH_MODEL(Nps, slider_crank_nps);
 BENCH_MODEL(Ali3p, slider_crank_ali3p);
 
 constexpr double kSample = 0.01;  // s, the published spacing
@@ -154,6 +156,12 @@ TEST_CASE("spatial slider-crank, h = 1e-4, 5 s: slider position against the redu
   CHECK(pcst.error < 2e-6);
   CHECK(pcst.energy_error < 2e-6);
   CHECK(pcst.violation < 1e-9);
+
+  const Result nps = run<Nps>(ref);
+  REQUIRE(nps.all_ok);
+  CHECK(nps.error < 2e-6);
+  CHECK(nps.energy_error < 2e-6);
+  CHECK(nps.violation < 1e-9);
 
   const Result baumgarte = run<Baumgarte>(ref);
   REQUIRE(baumgarte.all_ok);

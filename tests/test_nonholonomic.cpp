@@ -12,6 +12,7 @@
 #include "disk_pushed_ali3p.hpp"
 #include "disk_pushed_baumgarte.hpp"
 #include "disk_pushed_blajer.hpp"
+#include "disk_pushed_nps.hpp"
 #include "disk_pushed_pcst.hpp"
 #include "disk_rolling_ali3p.hpp"
 #include "disk_rolling_pcst.hpp"
@@ -96,7 +97,8 @@ TEST_CASE("rolling_disk, rolling_ball and knife_edge rows against finite differe
 
 TEST_CASE("disk pushed by 3 N (m = 5 kg, rho = 0.5 m): a = 0.4 m/s^2, friction -1 N, normal m g, every scheme") {
   for (const std::vector<double>& r : {PUSHED_DISK(disk_pushed_pcst), PUSHED_DISK(disk_pushed_baumgarte),
-                                       PUSHED_DISK(disk_pushed_blajer), PUSHED_DISK(disk_pushed_ali3p)}) {
+                                       PUSHED_DISK(disk_pushed_blajer), PUSHED_DISK(disk_pushed_ali3p),
+                                       PUSHED_DISK(disk_pushed_nps)}) {
     MESSAGE("y(2) = " << r[0] << " m, contact force (" << r[1] << ", " << r[2] << ", " << r[3] << ") N");
     CHECK(std::abs(r[0] - 0.5 * 0.4 * 4.0) < 1e-9);
     CHECK(std::abs(r[1]) < 1e-9);

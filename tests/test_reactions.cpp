@@ -9,6 +9,7 @@
 #include "cantilever_ali3p.hpp"
 #include "cantilever_baumgarte.hpp"
 #include "cantilever_blajer.hpp"
+#include "cantilever_nps.hpp"
 #include "cantilever_pcst.hpp"
 
 namespace {
@@ -48,7 +49,8 @@ TEST_CASE("welded bracket: f = -m g and t = -(c - p) x m g about the weld, in ev
   const mbrt::Vec3 g(0, 0, -9.81), c(0.5, 0.2, -0.1), p(0, 0, 0);
   const mbrt::Vec3 force = -m * g, torque = -(c - p).cross(m * g);
   for (const mbrt::JointReaction& r : {CANTILEVER_REACTION(cantilever_pcst), CANTILEVER_REACTION(cantilever_baumgarte),
-                                       CANTILEVER_REACTION(cantilever_blajer), CANTILEVER_REACTION(cantilever_ali3p)}) {
+                                       CANTILEVER_REACTION(cantilever_blajer), CANTILEVER_REACTION(cantilever_ali3p),
+                                       CANTILEVER_REACTION(cantilever_nps)}) {
     MESSAGE("force " << r.force.transpose() << ", torque " << r.torque.transpose());
     CHECK((r.force - force).norm() < 1e-6);
     CHECK((r.torque - torque).norm() < 1e-6);

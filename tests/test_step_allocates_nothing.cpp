@@ -21,6 +21,7 @@
 #include "actuated_lcm.hpp"
 #include "allocation_counter.hpp"
 #include "four_bar.hpp"
+#include "four_bar_nps.hpp"
 #include "heavy_top.hpp"
 
 TEST_CASE("the allocation counter sees heap allocations") {
@@ -54,6 +55,7 @@ TEST_CASE("step() allocates nothing over 1e5 steps") {
   CHECK_NO_ALLOCATION(a01_pendulum, 100000);
   CHECK_NO_ALLOCATION(heavy_top, 100000);
   CHECK_NO_ALLOCATION(four_bar, 100000);
+  CHECK_NO_ALLOCATION(four_bar_nps, 100000);  // staggered-nps: a tree and cut rows
 }
 
 TEST_CASE("the HIL cycle around the step allocates nothing") {
