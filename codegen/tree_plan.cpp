@@ -27,36 +27,34 @@ TreePlan plan_tree(const Model& model, const std::vector<ConstraintBlock>& block
   std::vector<bool> placed(bodies, false), used(blocks.size(), false);
   TreePlan t;
   auto in_tree = [&](int b) { return b == kGround || placed[static_cast<size_t>(b)]; };
+  auto rigid = [&](int b) { return b == kGround || !model.bodies[static_cast<size_t>(b)].particle; };
   auto place = [&](TreeBody tb) {
     placed[static_cast<size_t>(tb.body)] = true;
     t.order.push_back(tb);
   };
-  std::vector<int> frontier = {kGround};
   while (t.order.size() < bodies) {
-    // Children of the frontier bodies, in joint order.
-    for (size_t f = 0; f < frontier.size(); ++f) {
-      const int parent = frontier[f];
+    // Passes over the joints in file order: the first joint that reaches a
+    // body from the tree carries it, so a model lists its loop-closing joints
+    // last to make them the cut.
+    for (bool grew = true; grew;) {
+      grew = false;
       for (size_t j = 0; j < model.joints.size(); ++j) {
         const Joint& joint = model.joints[j];
-        if (used[j] || !is_tree_joint(joint.type)) continue;
-        const bool rigid1 = joint.body1 == kGround || !model.bodies[static_cast<size_t>(joint.body1)].particle;
-        const bool rigid2 = joint.body2 == kGround || !model.bodies[static_cast<size_t>(joint.body2)].particle;
-        if (!rigid1 || !rigid2) continue;
-        const int child = joint.body1 == parent ? joint.body2 : joint.body2 == parent ? joint.body1 : kGround - 1;
-        if (child < 0 || in_tree(child)) continue;
+        if (used[j] || !is_tree_joint(joint.type) || !rigid(joint.body1) || !rigid(joint.body2)) continue;
+        if (in_tree(joint.body1) == in_tree(joint.body2)) continue;
+        const bool child_is_body2 = in_tree(joint.body1);
         used[j] = true;
-        place({child, parent, static_cast<int>(j), child == joint.body2, tree_joint_dofs(joint.type)});
-        frontier.push_back(child);
+        place({child_is_body2 ? joint.body2 : joint.body1, child_is_body2 ? joint.body1 : joint.body2,
+               static_cast<int>(j), child_is_body2, tree_joint_dofs(joint.type)});
+        grew = true;
       }
     }
-    if (t.order.size() == bodies) break;
     // A body no tree joint reaches moves freely; its own subtree hangs from it.
     for (size_t b = 0; b < bodies; ++b) {
       if (placed[b]) continue;
       place({static_cast<int>(b), kGround, -1, true, model.bodies[b].particle ? 3 : 6});
       break;
     }
-    frontier.assign(1, t.order.back().body);
   }
   for (size_t j = 0; j < blocks.size(); ++j) {
     if (used[j]) continue;

@@ -33,8 +33,9 @@ constexpr int kMaxCutRows = 30;
 bool is_tree_joint(JointType type);
 int tree_joint_dofs(JointType type);
 
-// Breadth-first from ground over tree joints between rigid bodies; bodies
-// not reached become free bodies. Throws ModelError beyond kMaxCutRows.
+// Grows the tree from ground over tree joints between rigid bodies, taking
+// joints in file order; bodies not reached become free bodies. Throws
+// ModelError beyond kMaxCutRows.
 TreePlan plan_tree(const Model& model, const std::vector<ConstraintBlock>& blocks);
 
 }  // namespace mbrt::codegen

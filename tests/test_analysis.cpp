@@ -142,7 +142,7 @@ TEST_CASE("staggered-nps: a body reached from its joint's body2 side, and a body
 bodies:
   - {name: a, mass: 1, inertia: [1, 1, 1], position: [0, 0, 0]}
   - {name: b, mass: 1, inertia: [1, 1, 1], position: [1, 0, 0]}
-  - {name: p, mass: 1, position: [5, 0, 0]}
+  - {name: p, mass: 1, particle: true, position: [5, 0, 0]}
 joints:
   - {name: hinge, type: revolute, body1: b, body2: a, point: [0.5, 0, 0], axis: [0, 0, 1]}
   - {name: rope, type: distance, body1: a, body2: p, point1: [0, 0, 0], point2: [5, 0, 0]}
