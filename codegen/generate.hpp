@@ -18,6 +18,7 @@ struct GenerateOptions {
   std::optional<std::string> ali3p_projection;  // bayo | cuadrado
   std::optional<std::string> ali3p_integrator;  // trapezoidal | generalized_alpha
   bool project_initial = false;
+  bool specialize = true;  // false: --no-specialize, the general code for every scene
 };
 
 struct Generated {

@@ -7,14 +7,16 @@
 
 #include "generate.hpp"
 #include "sim_runner.hpp"
+#include "step_report.hpp"
 
 namespace {
 
 constexpr const char* kUsage = R"(usage:
   mbrt gen MODEL.yaml -o DIR [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
                       [--ali3p-projection bayo|cuadrado] [--ali3p-integrator trapezoidal|generalized_alpha]
+                      [--no-specialize] [--report]
   mbrt sim MODEL.yaml [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
-                      [--ali3p-projection P] [--ali3p-integrator I]
+                      [--ali3p-projection P] [--ali3p-integrator I] [--no-specialize]
                       [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--verbose]
   mbrt hil MODEL.yaml [generation options] (--lcm URL | --can BUS [--can-log F])
                       [--rate HZ] [--duration S] [--report F.json] [--state-channel C] [--command-channel C]
@@ -26,6 +28,9 @@ constexpr const char* kUsage = R"(usage:
 
 gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
 outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp).
+--no-specialize generates the general step, without the specializations the
+scene would allow; gen --report prints, as JSON, the specializations that
+applied, the step's floating-point operations, code size and predicted time.
 sim generates, compiles (cached by content hash under $MBRT_CACHE_DIR or
 ~/.cache/mbrt) and runs the model; its last line on stdout is a JSON summary.
 hil runs the model in a real-time loop that publishes its outputs and takes
@@ -69,6 +74,7 @@ int run(const std::vector<std::string>& args) {
   }
   const bool program_options = command == "hil" || command == "stub";  // checked by the program itself
   std::string model_path, out_dir;
+  bool report = false;
   mbrt::codegen::SimOptions sim;
   mbrt::codegen::GenerateOptions& gen = sim.generate;
   for (size_t i = 1; i < args.size(); ++i) {
@@ -84,6 +90,8 @@ int run(const std::vector<std::string>& args) {
     else if (a == "--name") gen.name = value();
     else if (a == "--ali3p-projection") gen.ali3p_projection = value();
     else if (a == "--ali3p-integrator") gen.ali3p_integrator = value();
+    else if (a == "--no-specialize") gen.specialize = false;
+    else if (command == "gen" && a == "--report") report = true;
     else if (command == "gen" && a == "-o") out_dir = value();
     else if (command == "sim" && a == "--t-end") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_number(a, value()))});
     else if (command == "sim" && a == "--every") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_integer(a, value()))});
@@ -103,6 +111,7 @@ int run(const std::vector<std::string>& args) {
     if (out_dir.empty()) throw UsageError("gen: missing -o DIR");
     const mbrt::codegen::Generated g = mbrt::codegen::generate(model_path, gen);
     mbrt::codegen::write_generated(g.code, out_dir);
+    if (report) std::puts(mbrt::codegen::report_json(mbrt::codegen::report_step(g, sim)).c_str());
     return 0;
   }
   using mbrt::codegen::Program;
