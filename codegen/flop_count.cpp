@@ -11,17 +11,13 @@
 
 #include <unistd.h>
 
+#include "shell_quote.hpp"
+
 namespace fs = std::filesystem;
 
 namespace mbrt::codegen {
 
 namespace {
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
@@ -59,15 +55,15 @@ Executed profile(const std::string& executable, double h, int steps, const fs::p
   std::snprintf(t_end, sizeof t_end, "%.17g", steps * h);
   const fs::path out = dir / ("callgrind." + std::to_string(steps));
   const std::string cmd = "valgrind --tool=callgrind --dump-instr=yes --dump-line=no --compress-pos=no "
-                          "--compress-strings=no --callgrind-out-file=" + quote(out.string()) + " " +
-                          quote(executable) + " --t-end " + t_end + " --every 1000000000 > /dev/null 2>&1";
+                          "--compress-strings=no --callgrind-out-file=" + shell_quote(out.string()) + " " +
+                          shell_quote(executable) + " --t-end " + t_end + " --every 1000000000 > /dev/null 2>&1";
   if (std::system(cmd.c_str()) != 0) throw std::runtime_error("valgrind failed (is it installed?): " + cmd);
   return read_profile(out);
 }
 
 // Floating-point operations per instruction address of one object file.
 std::map<unsigned long, int> flops_by_address(const std::string& object) {
-  const std::string cmd = "objdump -d --no-show-raw-insn " + quote(object) + " 2>/dev/null";
+  const std::string cmd = "objdump -d --no-show-raw-insn " + shell_quote(object) + " 2>/dev/null";
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
   if (!pipe) throw std::runtime_error("cannot run objdump");
   static const std::regex instruction(R"(^\s*([0-9a-f]+):\s+(\S+)\s*(\S*))");
