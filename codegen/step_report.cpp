@@ -14,7 +14,7 @@ namespace {
 
 // Steps counted: enough that the difference of N and 2N steps is exact
 // (fixed work per step) and short under valgrind.
-constexpr int kCountedSteps = 50;
+constexpr int kCountedSteps = 200;
 
 std::string json_string(const std::string& s) {
   std::string q = "\"";

@@ -1,6 +1,6 @@
 // `mbrt gen --report`: the counting of floating-point operations, checked on
 // a program with a known count, and the report of a model, specialized and
-// general: its fields, and that the specializations make the step smaller.
+// general: its fields, and that the specializations make the step do less.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -62,8 +62,11 @@ TEST_CASE("the report lists what was left out and counts less for the specialize
   const std::string model = std::string(MBRT_TEST_MODELS) + "/a01_pendulum.yaml";
   const std::string special = run("gen '" + model + "' --report");
   const std::string general = run("gen '" + model + "' --report --no-specialize");
-  for (const char* key : {"source_bytes", "executable_bytes", "flops_per_step", "instructions_per_step"}) {
+  for (const std::string key : {"source_bytes", "executable_bytes", "flops_per_step", "instructions_per_step"}) {
     CHECK_MESSAGE(number(special, key) > 0.0, key);
+  }
+  // The step's work shrinks; the source need not (it lists what was left out).
+  for (const std::string key : {"flops_per_step", "instructions_per_step"}) {
     CHECK_MESSAGE(number(special, key) < number(general, key), key);
   }
   CHECK(special.find("\"specialized\": true") != std::string::npos);
