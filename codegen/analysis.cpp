@@ -255,14 +255,24 @@ std::vector<Skipped> skipped_code(const Model& model, const Analysis& a) {
   const int isotropic = count([](const BodyPlan& b) { return b.rigid && b.isotropic; });
   const int unloaded = count([](const BodyPlan& b) { return !b.loaded; });
   if (a.particle_count > 0) {
-    out.push_back({"particles", std::to_string(a.particle_count) + " particle(s): no rotational state (by the model's contract, also without specializations)"});
+    out.push_back({"particles", std::to_string(a.particle_count) +
+                                    " particle(s): no rotational state (the model's contract, also without specializations)"});
   }
-  if (principal > 0) out.push_back({"principal_axes", std::to_string(principal) + " principal-axis bodies: inertia products in M^-1 and the gyroscopic torques"});
+  if (principal > 0) {
+    out.push_back({"principal_axes", std::to_string(principal) +
+                                         " principal-axis bodies: inertia products in M^-1 and the gyroscopic torques"});
+  }
   if (isotropic > 0) out.push_back({"isotropic", std::to_string(isotropic) + " isotropic bodies: their gyroscopic torques"});
-  if (on.single_stage && !a.velocity_dependent_forces) out.push_back({"single_stage", "no velocity-dependent loads: the second implicit stage"});
+  if (on.single_stage && !a.velocity_dependent_forces) {
+    out.push_back({"single_stage", "no velocity-dependent loads: the second implicit stage"});
+  }
   if (on.gravity_free && !a.gravity) out.push_back({"gravity_free", "no gravity: the gravity term of every load"});
-  if (on.folded_weights && a.gravity && model.gravity) out.push_back({"folded_weights", "gravity: the products m g, one constant weight per body"});
-  if (unloaded > 0) out.push_back({"unloaded_bodies", std::to_string(unloaded) + " bodies without applied loads: their M^-1 F products"});
+  if (on.folded_weights && model.gravity) {
+    out.push_back({"folded_weights", "gravity: the products m g, one constant weight per body"});
+  }
+  if (unloaded > 0) {
+    out.push_back({"unloaded_bodies", std::to_string(unloaded) + " bodies without applied loads: their M^-1 F products"});
+  }
   if (!a.rheonomic) out.push_back({"no_drivers", "no drivers: the explicit time terms phi_t"});
   const size_t n = a.constraints.size();
   size_t formed = 0;
@@ -365,6 +375,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     const mbrt::JointFrame& f = a.constraints[static_cast<size_t>(in.joint)].frame;
     a.inputs.push_back({j.body1, j.body2, f.a1, f.s1, f.s2});
   }
+  // Bodies an applied load acts on (gravity and gyroscopic torques marked above).
   const auto load = [&](int body) {
     if (body != kGround) a.bodies[static_cast<size_t>(body)].loaded = true;
   };

@@ -61,37 +61,34 @@ bool applies(const std::string& model, const std::string& specialization) {
 
 }  // namespace
 
-namespace special = mbrt::models;
+// Largest difference between the models <tag>_special and <tag>_general.
+#define DIFFERENCE_FROM_GENERAL(tag)                                                                         \
+  max_difference(mbrt::models::tag##_special::initial_state(), mbrt::models::tag##_general::initial_state(), \
+                 mbrt::models::tag##_special::step, mbrt::models::tag##_general::step, kSteps)
 
 TEST_CASE("single stage, folded weights, no drivers: the A01 pendulum equals the general code") {
   CHECK(applies("a01_pendulum.yaml", "single_stage"));
   CHECK(applies("a01_pendulum.yaml", "folded_weights"));
   CHECK(applies("a01_pendulum.yaml", "no_drivers"));
-  CHECK(max_difference(special::a01_special::initial_state(), special::a01_general::initial_state(),
-                       special::a01_special::step, special::a01_general::step, kSteps) < kRoundOff);
+  CHECK(DIFFERENCE_FROM_GENERAL(a01) < kRoundOff);
 }
 
 TEST_CASE("principal axes and the sparse factor: the four-bar equals the general code") {
   CHECK(applies("four_bar.yaml", "principal_axes"));
   CHECK(applies("four_bar.yaml", "sparse_factor"));
-  CHECK(max_difference(special::four_bar_special::initial_state(), special::four_bar_general::initial_state(),
-                       special::four_bar_special::step, special::four_bar_general::step, kSteps) < kRoundOff);
-  CHECK(max_difference(special::four_bar_ali3p_special::initial_state(),
-                       special::four_bar_ali3p_general::initial_state(), special::four_bar_ali3p_special::step,
-                       special::four_bar_ali3p_general::step, kSteps) < kRoundOff);
+  CHECK(DIFFERENCE_FROM_GENERAL(four_bar) < kRoundOff);
+  CHECK(DIFFERENCE_FROM_GENERAL(four_bar_ali3p) < kRoundOff);
 }
 
 TEST_CASE("isotropic bodies: the driven slider equals the general code") {
   CHECK(applies("driven_slider.yaml", "isotropic"));
-  CHECK(max_difference(special::driven_slider_special::initial_state(), special::driven_slider_general::initial_state(),
-                       special::driven_slider_special::step, special::driven_slider_general::step, kSteps) < kRoundOff);
+  CHECK(DIFFERENCE_FROM_GENERAL(driven_slider) < kRoundOff);
 }
 
 TEST_CASE("gravity-free, unloaded bodies: the pursuit of two masses equals the general code") {
   CHECK(applies("two_masses.yaml", "gravity_free"));
   CHECK(applies("two_masses.yaml", "unloaded_bodies"));
-  CHECK(max_difference(special::two_masses_special::initial_state(), special::two_masses_general::initial_state(),
-                       special::two_masses_special::step, special::two_masses_general::step, kSteps) < kRoundOff);
+  CHECK(DIFFERENCE_FROM_GENERAL(two_masses) < kRoundOff);
 }
 
 TEST_CASE("without specializations nothing is left out but the particles' rotations") {
