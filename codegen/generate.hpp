@@ -6,6 +6,7 @@
 #include <string>
 
 #include "emit_cpp.hpp"
+#include "specializations.hpp"
 
 namespace mbrt::codegen {
 
@@ -18,7 +19,7 @@ struct GenerateOptions {
   std::optional<std::string> ali3p_projection;  // bayo | cuadrado
   std::optional<std::string> ali3p_integrator;  // trapezoidal | generalized_alpha
   bool project_initial = false;
-  bool specialize = true;  // false: --no-specialize, the general code for every scene
+  Specializations specialize;  // --no-specialize[=NAME,...] clears flags
 };
 
 struct Generated {

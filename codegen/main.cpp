@@ -1,6 +1,7 @@
 // mbrt: generate a model's allocation-free step, or generate, compile and run it.
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,9 +15,9 @@ namespace {
 constexpr const char* kUsage = R"(usage:
   mbrt gen MODEL.yaml -o DIR [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
                       [--ali3p-projection bayo|cuadrado] [--ali3p-integrator trapezoidal|generalized_alpha]
-                      [--no-specialize] [--report]
+                      [--no-specialize[=NAME,...]] [--report]
   mbrt sim MODEL.yaml [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
-                      [--ali3p-projection P] [--ali3p-integrator I] [--no-specialize]
+                      [--ali3p-projection P] [--ali3p-integrator I] [--no-specialize[=NAME,...]]
                       [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--verbose]
   mbrt hil MODEL.yaml [generation options] (--lcm URL | --can BUS [--can-log F])
                       [--rate HZ] [--duration S] [--report F.json] [--state-channel C] [--command-channel C]
@@ -29,7 +30,9 @@ constexpr const char* kUsage = R"(usage:
 gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
 outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp).
 --no-specialize generates the general step, without the specializations the
-scene would allow; gen --report prints, as JSON, the specializations that
+scene would allow (--no-specialize=NAME,... only without those named:
+principal_axes, isotropic, single_stage, gravity_free, folded_weights,
+unloaded_bodies, no_drivers, sparse_factor); gen --report prints, as JSON, the specializations that
 applied, the step's floating-point operations, code size and predicted time.
 sim generates, compiles (cached by content hash under $MBRT_CACHE_DIR or
 ~/.cache/mbrt) and runs the model; its last line on stdout is a JSON summary.
@@ -63,6 +66,18 @@ int parse_integer(const std::string& flag, const std::string& text) {
   throw UsageError(flag + ": expected an integer, got '" + text + "'");
 }
 
+// --no-specialize=NAME,...: clears the flags named.
+void turn_off(const std::string& names, mbrt::codegen::Specializations& s) {
+  std::stringstream list(names);
+  for (std::string name; std::getline(list, name, ',');) {
+    bool known = false;
+    for (const auto& [n, flag] : mbrt::codegen::kSpecializationNames) {
+      if (name == n) s.*flag = false, known = true;
+    }
+    if (!known) throw UsageError("--no-specialize: unknown specialization '" + name + "'");
+  }
+}
+
 int run(const std::vector<std::string>& args) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
@@ -90,7 +105,8 @@ int run(const std::vector<std::string>& args) {
     else if (a == "--name") gen.name = value();
     else if (a == "--ali3p-projection") gen.ali3p_projection = value();
     else if (a == "--ali3p-integrator") gen.ali3p_integrator = value();
-    else if (a == "--no-specialize") gen.specialize = false;
+    else if (a == "--no-specialize") gen.specialize = mbrt::codegen::Specializations::none();
+    else if (a.rfind("--no-specialize=", 0) == 0) turn_off(a.substr(16), gen.specialize);
     else if (command == "gen" && a == "--report") report = true;
     else if (command == "gen" && a == "-o") out_dir = value();
     else if (command == "sim" && a == "--t-end") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_number(a, value()))});

@@ -50,7 +50,9 @@ StepReport report_step(const Generated& g, const SimOptions& options) {
   StepReport r;
   r.model = g.model.name;
   r.scheme = g.model.solver.scheme;
-  r.specialized = options.generate.specialize;
+  for (const auto& [name, flag] : kSpecializationNames) {
+    if (!(options.generate.specialize.*flag)) r.turned_off.push_back(name);
+  }
   r.skipped = g.analysis.skipped;
   r.source_bytes = g.code.header.size() + g.code.source.size();
   const std::string executable = build_program(Program::sim, g, options);
@@ -63,7 +65,9 @@ StepReport report_step(const Generated& g, const SimOptions& options) {
 std::string report_json(const StepReport& r) {
   std::ostringstream o;
   o << "{\n  \"model\": " << json_string(r.model) << ",\n  \"scheme\": " << json_string(r.scheme)
-    << ",\n  \"specialized\": " << (r.specialized ? "true" : "false") << ",\n  \"skipped\": [";
+    << ",\n  \"turned_off\": [";
+  for (size_t i = 0; i < r.turned_off.size(); ++i) o << (i ? ", " : "") << json_string(r.turned_off[i]);
+  o << "],\n  \"skipped\": [";
   for (size_t i = 0; i < r.skipped.size(); ++i) {
     o << (i ? "," : "") << "\n    {\"specialization\": " << json_string(r.skipped[i].specialization)
       << ", \"removed\": " << json_string(r.skipped[i].removed) << "}";

@@ -17,7 +17,7 @@ namespace mbrt::codegen {
 struct StepReport {
   std::string model;
   std::string scheme;
-  bool specialized = true;
+  std::vector<std::string> turned_off;  // specializations --no-specialize turned off
   std::vector<Skipped> skipped;
   size_t source_bytes = 0;          // generated <name>.hpp and <name>.cpp
   size_t executable_bytes = 0;      // the compiled sim program (model, driver and runtime)

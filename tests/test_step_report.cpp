@@ -69,10 +69,15 @@ TEST_CASE("the report lists what was left out and counts less for the specialize
   for (const std::string key : {"flops_per_step", "instructions_per_step"}) {
     CHECK_MESSAGE(number(special, key) < number(general, key), key);
   }
-  CHECK(special.find("\"specialized\": true") != std::string::npos);
-  CHECK(general.find("\"specialized\": false") != std::string::npos);
+  CHECK(special.find("\"turned_off\": []") != std::string::npos);
+  CHECK(general.find("\"turned_off\": [\"principal_axes\", \"isotropic\", \"single_stage\"") != std::string::npos);
   CHECK(special.find("\"specialization\": \"single_stage\"") != std::string::npos);
   CHECK(general.find("\"specialization\": \"single_stage\"") == std::string::npos);
   CHECK(special.find("\"predicted_ns_per_step\": ") != std::string::npos);
+  // One specialization turned off: the step does more than specialized, less than general.
+  const std::string one = run("gen '" + model + "' --report --no-specialize=single_stage");
+  CHECK(one.find("\"turned_off\": [\"single_stage\"]") != std::string::npos);
+  CHECK(number(one, "flops_per_step") > number(special, "flops_per_step"));
+  CHECK(number(one, "flops_per_step") < number(general, "flops_per_step"));
   CHECK(special.find("\"calibration\": ") != std::string::npos);
 }

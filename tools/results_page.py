@@ -212,8 +212,8 @@ def specializations(out):
         table(out, ["model", "scheme", "variant", "flops per step", "instructions per step", "check",
                     "source bytes", "executable bytes", "predicted ns", "measured ns"],
               [[r["model"], r["scheme"], r["variant"], r["flops_per_step"], r["instructions_per_step"],
-                r["instructions_per_step_check"], r["source_bytes"], r["executable_bytes"],
-                r["predicted_ns_per_step"] or "-", r["ns_per_step"]] for r in data])
+                r["instructions_per_step_check"] or "-", r["source_bytes"], r["executable_bytes"],
+                r["predicted_ns_per_step"] or "-", r["ns_per_step"] or "-"] for r in data])
         by_model = {}
         for r in data:
             by_model.setdefault(r["model"], {})[r["variant"]] = r
@@ -222,6 +222,13 @@ def specializations(out):
                   for m, v in by_model.items() if "specialized" in v and "general" in v]
         paragraph(out, "Specialized over general:")
         table(out, ["model", "flops", "instructions"], ratios)
+        saved = [[m, variant[len("without "):],
+                  str(int(r["flops_per_step"]) - int(v["specialized"]["flops_per_step"])),
+                  str(int(r["instructions_per_step"]) - int(v["specialized"]["instructions_per_step"]))]
+                 for m, v in by_model.items() for variant, r in v.items() if variant.startswith("without ")]
+        paragraph(out, "Per step, what each specialization saves on its own (the model with only that one "
+                   "turned off, `--no-specialize=NAME`, minus the specialized model):")
+        table(out, ["model", "specialization", "flops saved", "instructions saved"], saved)
     paragraph(out, "### Calibration of the predicted step time")
     data = measured(out, "flop_calibration", "timing/flop_calibration")
     if data is not None:
