@@ -116,7 +116,9 @@ void Emitter::constants(std::ostringstream& o) const {
       o << "const mbrt::FullInertia " << mass_of(static_cast<int>(i)) << "{" << num(b.mass) << ", "
         << mat3(b.inertia) << ", " << mat3(b.inertia.inverse()) << "};\n";
     }
-    if (folded_weights()) o << "const mbrt::Vec3 " << weight_of(static_cast<int>(i)) << " = " << vec3(b.mass * *m_.gravity) << ";\n";
+    if (folded_weights()) {
+      o << "const mbrt::Vec3 " << weight_of(static_cast<int>(i)) << " = " << vec3(b.mass * *m_.gravity) << ";\n";
+    }
   }
   o << "\n// Joint and driver frames in body axes; drivers' functions of time.\n";
   for (int j = 0; j < blocks(); ++j) {

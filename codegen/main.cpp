@@ -30,10 +30,11 @@ constexpr const char* kUsage = R"(usage:
 gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
 outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp).
 --no-specialize generates the general step, without the specializations the
-scene would allow (--no-specialize=NAME,... only without those named:
-principal_axes, isotropic, single_stage, gravity_free, folded_weights,
-unloaded_bodies, no_drivers, sparse_factor); gen --report prints, as JSON, the specializations that
-applied, the step's floating-point operations, code size and predicted time.
+scene would allow; --no-specialize=NAME,... leaves out only those named
+(principal_axes, isotropic, single_stage, gravity_free, folded_weights,
+unloaded_bodies, no_drivers, sparse_factor). gen --report prints, as JSON,
+the specializations that applied, the step's floating-point operations and
+instructions, its code size and predicted time (docs/specializations.md).
 sim generates, compiles (cached by content hash under $MBRT_CACHE_DIR or
 ~/.cache/mbrt) and runs the model; its last line on stdout is a JSON summary.
 hil runs the model in a real-time loop that publishes its outputs and takes
@@ -72,7 +73,9 @@ void turn_off(const std::string& names, mbrt::codegen::Specializations& s) {
   for (std::string name; std::getline(list, name, ',');) {
     bool known = false;
     for (const auto& [n, flag] : mbrt::codegen::kSpecializationNames) {
-      if (name == n) s.*flag = false, known = true;
+      if (name != n) continue;
+      s.*flag = false;
+      known = true;
     }
     if (!known) throw UsageError("--no-specialize: unknown specialization '" + name + "'");
   }
