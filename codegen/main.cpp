@@ -30,7 +30,7 @@ constexpr const char* kUsage = R"(usage:
 gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
 outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp).
 --no-specialize generates the general step, without the specializations the
-scene would allow; --no-specialize=NAME,... leaves out only those named
+scene would allow; --no-specialize=NAME,... turns off only those named
 (principal_axes, isotropic, single_stage, gravity_free, folded_weights,
 unloaded_bodies, no_drivers, sparse_factor). gen --report prints, as JSON,
 the specializations that applied, the step's floating-point operations and
