@@ -204,9 +204,11 @@ def specializations(out):
     paragraph(out, "## Specializations and the cost of a step")
     paragraph(out, "What the generator's specializations save (docs/specializations.md): floating-point operations "
                "and instructions per `step()` counted by `mbrt gen --report` in the compiled sim program under "
-               "callgrind, as specialized and with `--no-specialize`; `check` is the instruction count of "
+               "callgrind, as specialized, with `--no-specialize` (general) and with each specialization that applies "
+               "turned off alone (`without NAME`); `check` is the instruction count of "
                "`timing/instructions_per_step`, an independent route to the same figure; the predicted time is "
-               "the count times the calibration below, the measured one is `mbrt sim`'s (median of 3 runs).")
+               "the count times the calibration below, the measured one is `mbrt sim`'s (median of 3 runs; the "
+               "machine is shared, so measured times vary far more than the counts).")
     data = measured(out, "specialization_counts", "timing/specialization_counts")
     if data is not None:
         table(out, ["model", "scheme", "variant", "flops per step", "instructions per step", "check",
@@ -235,6 +237,7 @@ def specializations(out):
         table(out, ["model", "scheme", "flops per step", "ns per step", "ns per flop"],
               [[r["model"], r["scheme"], r["flops_per_step"], g(r["ns_per_step"]), g(r["ns_per_flop"])] for r in data])
     paragraph(out, "### Generation and compile time of large models")
+    paragraph(out, "Wall times depend on the other jobs on the machine; CPU time (user + system) much less.")
     data = measured(out, "generation_scale", "timing/generation_scale")
     if data is not None:
         table(out, ["model", "bodies", "constraint rows", "mbrt gen wall (s)", "mbrt gen CPU (s)", "source bytes",
