@@ -10,8 +10,8 @@
 # lcm-gen also runs on the model's message types and "<name>_lcm.hpp" packs
 # Outputs and Inputs into them ("<name>_can.hpp" packs them into CAN frames as
 # "<name>.dbc" describes); the target then links liblcm. GEN_OPTIONS
-# passes further `mbrt gen` options (e.g. --ali3p-projection cuadrado, or
-# --can-fd for the CAN layout in CAN FD frames).
+# passes further `mbrt gen` options (e.g. --ali3p-projection cuadrado,
+# --no-specialize, or --can-fd for the CAN layout in CAN FD frames).
 function(mbrt_add_model target)
   cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
   if(NOT ARG_MODEL)

@@ -169,6 +169,15 @@ std::vector<std::vector<int>> coupling(const std::vector<ConstraintBlock>& block
   return out;
 }
 
+// The general pattern: every block of S taken as non-zero.
+std::vector<std::vector<int>> every_pair(size_t n) {
+  std::vector<std::vector<int>> out(n);
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < n; ++k) if (i != k) out[i].push_back(static_cast<int>(k));
+  }
+  return out;
+}
+
 FactorPattern factor_pattern(const std::vector<std::vector<int>>& coupled) {
   const int n = static_cast<int>(coupled.size());
   FactorPattern p;
@@ -235,20 +244,62 @@ Ali3pPlan ali3p_plan(const Model& model, const std::vector<ConstraintBlock>& blo
   return p;
 }
 
+// The specializations that applied and the code each left out.
+std::vector<Skipped> skipped_code(const Model& model, const Analysis& a) {
+  const Specializations& on = a.specialize;
+  std::vector<Skipped> out;
+  const auto count = [&](auto predicate) {
+    return static_cast<int>(std::count_if(a.bodies.begin(), a.bodies.end(), predicate));
+  };
+  const int principal = count([](const BodyPlan& b) { return b.rigid && b.principal_axes; });
+  const int isotropic = count([](const BodyPlan& b) { return b.rigid && b.isotropic; });
+  const int unloaded = count([](const BodyPlan& b) { return !b.loaded; });
+  if (a.particle_count > 0) {
+    out.push_back({"particles", std::to_string(a.particle_count) +
+                                    " particle(s): no rotational state (the model's contract, also without specializations)"});
+  }
+  if (principal > 0) {
+    out.push_back({"principal_axes", std::to_string(principal) +
+                                         " principal-axis bodies: inertia products in M^-1 and the gyroscopic torques"});
+  }
+  if (isotropic > 0) out.push_back({"isotropic", std::to_string(isotropic) + " isotropic bodies: their gyroscopic torques"});
+  if (on.single_stage && !a.velocity_dependent_forces) {
+    out.push_back({"single_stage", "no velocity-dependent loads: the second implicit stage"});
+  }
+  if (on.gravity_free && !a.gravity) out.push_back({"gravity_free", "no gravity: the gravity term of every load"});
+  if (on.folded_weights && model.gravity) {
+    out.push_back({"folded_weights", "gravity: the products m g, one constant weight per body"});
+  }
+  if (unloaded > 0) {
+    out.push_back({"unloaded_bodies", std::to_string(unloaded) + " bodies without applied loads: their M^-1 F products"});
+  }
+  if (!a.rheonomic) out.push_back({"no_drivers", "no drivers: the explicit time terms phi_t"});
+  const size_t n = a.constraints.size();
+  size_t formed = 0;
+  for (const auto& col : a.pattern.lower) formed += col.size();
+  if (on.sparse_factor && formed < n * (n - 1) / 2) {
+    out.push_back({"sparse_factor", std::to_string(n * (n - 1) / 2 - formed) + " of " + std::to_string(n * (n - 1) / 2) +
+                                        " off-diagonal blocks of S's factor: zero, never formed"});
+  }
+  return out;
+}
+
 }  // namespace
 
-Analysis analyse(const Model& model) {
+Analysis analyse(const Model& model, const Specializations& specialize) {
   Analysis a;
-  a.gravity = model.gravity.has_value();
+  a.specialize = specialize;
+  a.gravity = model.gravity.has_value() || !specialize.gravity_free;
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
-    BodyPlan plan{static_cast<int>(i), !b.particle, b.particle ? a.particle_count++ : a.rigid_count++, false, false};
+    BodyPlan plan{static_cast<int>(i), !b.particle, b.particle ? a.particle_count++ : a.rigid_count++, false, false,
+                  a.gravity};
     if (plan.rigid) {
       const Eigen::Matrix3d off = b.inertia - Eigen::Matrix3d(b.inertia.diagonal().asDiagonal());
-      plan.principal_axes = off.cwiseAbs().maxCoeff() == 0.0;
+      plan.principal_axes = specialize.principal_axes && off.cwiseAbs().maxCoeff() == 0.0;
       const Eigen::Vector3d d = b.inertia.diagonal();
-      plan.isotropic = plan.principal_axes && d.x() == d.y() && d.y() == d.z();
-      if (!plan.isotropic) a.velocity_dependent_forces = true;
+      plan.isotropic = specialize.isotropic && d.x() == d.y() && d.y() == d.z() && off.cwiseAbs().maxCoeff() == 0.0;
+      if (!plan.isotropic) a.velocity_dependent_forces = plan.loaded = true;  // gyroscopic torque
     }
     a.bodies.push_back(plan);
   }
@@ -285,8 +336,8 @@ Analysis analyse(const Model& model) {
     }
     a.constraints.push_back(block);
     a.constraint_rows += 1;
-    a.rheonomic = true;
   }
+  a.rheonomic = !model.drivers.empty() || !specialize.no_drivers;
   for (size_t i = 0; i < model.forces.size(); ++i) {
     const Force& f = model.forces[i];
     const std::string key = "forces[" + std::to_string(i) + "]";
@@ -324,7 +375,19 @@ Analysis analyse(const Model& model) {
     const mbrt::JointFrame& f = a.constraints[static_cast<size_t>(in.joint)].frame;
     a.inputs.push_back({j.body1, j.body2, f.a1, f.s1, f.s2});
   }
-  a.pattern = factor_pattern(coupling(a.constraints));
+  // Bodies an applied load acts on (gravity and gyroscopic torques marked above).
+  const auto load = [&](int body) {
+    if (body != kGround) a.bodies[static_cast<size_t>(body)].loaded = true;
+  };
+  for (const Force& f : model.forces) {
+    if (f.type == ForceType::force) load(f.body);
+    else load(f.body1), load(f.body2);
+  }
+  for (const InputPlan& in : a.inputs) load(in.body1), load(in.body2);
+  if (!specialize.unloaded_bodies) {
+    for (BodyPlan& b : a.bodies) b.loaded = true;
+  }
+  a.pattern = factor_pattern(specialize.sparse_factor ? coupling(a.constraints) : every_pair(a.constraints.size()));
 
   // Scheme parameters (docs/staggered-pcst.md, docs/schemes.md).
   const double h = model.solver.step;
@@ -340,13 +403,7 @@ Analysis analyse(const Model& model) {
   if (model.solver.scheme == "ali3p") a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
   if (model.solver.scheme == "staggered-nps") a.tree = plan_tree(model, a.constraints);
 
-  if (!a.gravity) a.skipped.push_back("gravity: no gravity term");
-  if (a.particle_count > 0) a.skipped.push_back(std::to_string(a.particle_count) + " particle(s): no rotational state");
-  int principal = 0;
-  for (const BodyPlan& b : a.bodies) principal += b.rigid && b.principal_axes;
-  if (principal > 0) a.skipped.push_back(std::to_string(principal) + " principal-axis bodies: no inertia products");
-  if (!a.velocity_dependent_forces) a.skipped.push_back("no velocity-dependent forces: one stage per step");
-  if (!a.rheonomic) a.skipped.push_back("no drivers: no explicit time terms");
+  a.skipped = skipped_code(model, a);
   return a;
 }
 

@@ -11,6 +11,7 @@
 #include <mbrt/joints.hpp>
 
 #include "model.hpp"
+#include "specializations.hpp"
 #include "tree_plan.hpp"
 
 namespace mbrt::codegen {
@@ -21,6 +22,7 @@ struct BodyPlan {
   int slot;             // index in State::rigid or State::particle
   bool principal_axes;  // inertia diagonal in body axes: no product terms
   bool isotropic;       // equal principal moments: no gyroscopic torque
+  bool loaded;          // some applied load acts on it (gravity, gyroscopic torque, force, input)
 };
 
 // One block of constraint rows: a joint, or a driver (rheonomic).
@@ -90,12 +92,13 @@ struct Analysis {
   double baumgarte_beta = 0.0;             // baumgarte, 1/s
   Ali3pPlan ali3p;                         // ali3p only
   TreePlan tree;                           // staggered-nps only
-  std::vector<std::string> skipped;        // what the scene does not need, for reports
+  Specializations specialize;              // which ones the emitter may make
+  std::vector<Skipped> skipped;            // the ones that applied, for the source's comment and reports
 };
 
 // Throws ModelError for models the generator cannot handle (e.g. a revolute
 // joint on a particle).
-Analysis analyse(const Model& model);
+Analysis analyse(const Model& model, const Specializations& specialize = {});
 
 // Row count of a joint type.
 int constraint_rows(JointType type);

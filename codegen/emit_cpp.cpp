@@ -102,7 +102,7 @@ void Emitter::constants(std::ostringstream& o) const {
     case Scheme::ali3p:
       break;  // after the workspace types: its constants are per row
   }
-  if (a_.gravity) o << "const mbrt::Vec3 kGravity = " << vec3(*m_.gravity) << ";\n";
+  if (a_.gravity) o << "const mbrt::Vec3 kGravity = " << vec3(m_.gravity.value_or(Eigen::Vector3d::Zero())) << ";\n";
   o << "const mbrt::BodyPose kGroundPose = mbrt::ground_pose();\n"
     << "const mbrt::BodyVelocity kGroundVelocity = mbrt::ground_velocity();\n\n"
     << "// Mass properties (constant; M is block diagonal).\n";
@@ -117,6 +117,9 @@ void Emitter::constants(std::ostringstream& o) const {
     } else {
       o << "const mbrt::FullInertia " << mass_of(static_cast<int>(i)) << "{" << num(b.mass) << ", "
         << mat3(b.inertia) << ", " << mat3(b.inertia.inverse()) << "};\n";
+    }
+    if (folded_weights()) {
+      o << "const mbrt::Vec3 " << weight_of(static_cast<int>(i)) << " = " << vec3(b.mass * *m_.gravity) << ";\n";
     }
   }
   o << "\n// Joint and driver frames in body axes; drivers' functions of time.\n";
@@ -261,7 +264,8 @@ void Emitter::loads_stage(std::ostringstream& o) const {
     << "  l.w.fill(mbrt::Wrench{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const BodyPlan& p = a_.bodies[i];
-    if (a_.gravity) o << "  l.w[" << i << "].f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
+    if (folded_weights()) o << "  l.w[" << i << "].f += " << weight_of(static_cast<int>(i)) << ";\n";
+    else if (a_.gravity) o << "  l.w[" << i << "].f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
     if (p.rigid && !p.isotropic) {
       o << "  l.w[" << i << "].tau += mbrt::gyroscopic_torque(" << mass_of(static_cast<int>(i)) << ", k.vel[" << i
         << "].w);\n";
@@ -442,7 +446,12 @@ std::string Emitter::s_block(int i, int j) const {
 void Emitter::mass_products(std::ostringstream& o) const {
   o << "// (l) => (M^-1 F) per body.\n"
     << "BodyVectors free_accelerations(const Loads& l) noexcept {\n  BodyVectors a;\n";
+  if (std::none_of(a_.bodies.begin(), a_.bodies.end(), [](const BodyPlan& p) { return p.loaded; })) o << "  (void)l;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    if (!a_.bodies[i].loaded) {
+      o << "  a[" << i << "].setZero();  // " << m_.bodies[i].name << ": no applied load\n";
+      continue;
+    }
     o << "  a[" << i << "] = mbrt::inverse_mass_times(" << mass_of(static_cast<int>(i)) << ", l.w[" << i << "]);\n";
   }
   o << "  return a;\n}\n\n";
@@ -540,7 +549,7 @@ std::string Emitter::source() const {
       << (scheme_kind() == Scheme::blajer ? " -> corrections" : "") << ".\n";
   }
   o << "// Left out for this scene:";
-  for (const std::string& s : a_.skipped) o << "\n//   " << s;
+  for (const Skipped& s : a_.skipped) o << "\n//   " << s.specialization << ": " << s.removed;
   if (a_.skipped.empty()) o << " nothing";
   o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n#include <mbrt/natural_partitioning.hpp>\n#include <mbrt/reactions.hpp>\n#include <mbrt/runtime.hpp>\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";

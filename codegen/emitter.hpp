@@ -54,11 +54,14 @@ class Emitter {
 
   // Implicit passes per step: two when the end-of-step accelerations depend on
   // the end-of-step velocities (gyroscopic or damping loads, Baumgarte's
-  // velocity term), else one.
+  // velocity term) or without the single-stage specialization, else one.
   int stages() const {
     const bool baumgarte = m_.solver.scheme == "baumgarte" && a_.constraint_rows > 0;
-    return a_.velocity_dependent_forces || baumgarte ? 2 : 1;
+    return a_.velocity_dependent_forces || baumgarte || !a_.specialize.single_stage ? 2 : 1;
   }
+  // Gravity's m g as a constant per body (folded) rather than a product in every load evaluation.
+  bool folded_weights() const { return a_.specialize.folded_weights && m_.gravity.has_value(); }
+  std::string weight_of(int i) const { return body(i).name + "_weight"; }
   const Body& body(int i) const { return m_.bodies[static_cast<size_t>(i)]; }
   const BodyPlan& plan(int i) const { return a_.bodies[static_cast<size_t>(i)]; }
   const ConstraintBlock& block(int j) const { return a_.constraints[static_cast<size_t>(j)]; }

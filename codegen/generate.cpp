@@ -66,7 +66,7 @@ void check_initial_state(const Model& model, const Analysis& analysis) {
 Generated generate(const std::string& model_path, const GenerateOptions& options) {
   Generated g{load_model(model_path), {}, {}};
   apply_overrides(g.model, options);
-  g.analysis = analyse(g.model);
+  g.analysis = analyse(g.model, options.specialize);
   if (options.project_initial) project_initial_state(g.model, g.analysis);
   check_initial_state(g.model, g.analysis);
   g.code = emit_cpp(g.model, g.analysis);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "emit_cpp.hpp"
+#include "specializations.hpp"
 
 namespace mbrt::codegen {
 
@@ -19,6 +20,7 @@ struct GenerateOptions {
   std::optional<std::string> ali3p_integrator;  // trapezoidal | generalized_alpha
   bool project_initial = false;
   bool can_fd = false;  // the CAN layout in CAN FD frames rather than classic ones
+  Specializations specialize;  // --no-specialize[=NAME,...] clears flags
 };
 
 struct Generated {

@@ -1,20 +1,23 @@
 // mbrt: generate a model's allocation-free step, or generate, compile and run it.
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "generate.hpp"
 #include "sim_runner.hpp"
+#include "step_report.hpp"
 
 namespace {
 
 constexpr const char* kUsage = R"(usage:
   mbrt gen MODEL.yaml -o DIR [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
                       [--ali3p-projection bayo|cuadrado] [--ali3p-integrator trapezoidal|generalized_alpha] [--can-fd]
+                      [--no-specialize[=NAME,...]] [--report]
   mbrt sim MODEL.yaml [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
-                      [--ali3p-projection P] [--ali3p-integrator I] [--can-fd]
+                      [--ali3p-projection P] [--ali3p-integrator I] [--can-fd] [--no-specialize[=NAME,...]]
                       [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--verbose]
   mbrt hil MODEL.yaml [generation options] (--lcm URL | --can BUS [--can-log F])
                       [--rate HZ] [--duration S] [--report F.json] [--state-channel C] [--command-channel C]
@@ -26,6 +29,12 @@ constexpr const char* kUsage = R"(usage:
 
 gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
 outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp).
+--no-specialize generates the general step, without the specializations the
+scene would allow; --no-specialize=NAME,... turns off only those named
+(principal_axes, isotropic, single_stage, gravity_free, folded_weights,
+unloaded_bodies, no_drivers, sparse_factor). gen --report prints, as JSON,
+the specializations that applied, the step's floating-point operations and
+instructions, its code size and predicted time (docs/specializations.md).
 sim generates, compiles (cached by content hash under $MBRT_CACHE_DIR or
 ~/.cache/mbrt) and runs the model; its last line on stdout is a JSON summary.
 hil runs the model in a real-time loop that publishes its outputs and takes
@@ -59,6 +68,20 @@ int parse_integer(const std::string& flag, const std::string& text) {
   throw UsageError(flag + ": expected an integer, got '" + text + "'");
 }
 
+// --no-specialize=NAME,...: clears the flags named.
+void turn_off(const std::string& names, mbrt::codegen::Specializations& s) {
+  std::stringstream list(names);
+  for (std::string name; std::getline(list, name, ',');) {
+    bool known = false;
+    for (const auto& [n, flag] : mbrt::codegen::kSpecializationNames) {
+      if (name != n) continue;
+      s.*flag = false;
+      known = true;
+    }
+    if (!known) throw UsageError("--no-specialize: unknown specialization '" + name + "'");
+  }
+}
+
 int run(const std::vector<std::string>& args) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
@@ -70,6 +93,7 @@ int run(const std::vector<std::string>& args) {
   }
   const bool program_options = command == "hil" || command == "stub";  // checked by the program itself
   std::string model_path, out_dir;
+  bool report = false;
   mbrt::codegen::SimOptions sim;
   mbrt::codegen::GenerateOptions& gen = sim.generate;
   for (size_t i = 1; i < args.size(); ++i) {
@@ -86,6 +110,9 @@ int run(const std::vector<std::string>& args) {
     else if (a == "--name") gen.name = value();
     else if (a == "--ali3p-projection") gen.ali3p_projection = value();
     else if (a == "--ali3p-integrator") gen.ali3p_integrator = value();
+    else if (a == "--no-specialize") gen.specialize = mbrt::codegen::Specializations::none();
+    else if (a.rfind("--no-specialize=", 0) == 0) turn_off(a.substr(16), gen.specialize);
+    else if (command == "gen" && a == "--report") report = true;
     else if (command == "gen" && a == "-o") out_dir = value();
     else if (command == "sim" && a == "--t-end") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_number(a, value()))});
     else if (command == "sim" && a == "--every") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_integer(a, value()))});
@@ -105,6 +132,7 @@ int run(const std::vector<std::string>& args) {
     if (out_dir.empty()) throw UsageError("gen: missing -o DIR");
     const mbrt::codegen::Generated g = mbrt::codegen::generate(model_path, gen);
     mbrt::codegen::write_generated(g.code, out_dir);
+    if (report) std::puts(mbrt::codegen::report_json(mbrt::codegen::report_step(g, sim)).c_str());
     return 0;
   }
   using mbrt::codegen::Program;

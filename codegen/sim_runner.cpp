@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "shell_quote.hpp"
 #include "toolchain.hpp"
 
 namespace fs = std::filesystem;
@@ -34,12 +35,6 @@ std::uint64_t fnv1a(const std::string& text, std::uint64_t h = 14695981039346656
     h *= 1099511628211ull;
   }
   return h;
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
 }
 
 fs::path cache_root(const SimOptions& o) {
@@ -127,7 +122,7 @@ std::string content_key(const GeneratedCode& code, const ProgramPlan& p) {
 
 void run_or_throw(const std::string& cmd, const std::string& what, const fs::path& log, bool verbose) {
   if (verbose) std::fprintf(stderr, "%s: %s\n", what.c_str(), cmd.c_str());
-  if (std::system((cmd + " 2> " + quote(log.string())).c_str()) != 0) {
+  if (std::system((cmd + " 2> " + shell_quote(log.string())).c_str()) != 0) {
     throw std::runtime_error(what + " failed; see " + log.string());
   }
 }
@@ -148,21 +143,21 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
   const fs::path tmp = dir.string() + ".tmp" + std::to_string(::getpid());
   fs::create_directories(tmp);
   write_generated(g.code, tmp.string());
-  std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags(p) + " -I" + quote(tmp.string());
-  for (const fs::path& inc : sources().includes) cmd += " -I" + quote(inc.string());
-  cmd += " -I" + quote(toolchain::kEigenInclude) + " -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name;
+  std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags(p) + " -I" + shell_quote(tmp.string());
+  for (const fs::path& inc : sources().includes) cmd += " -I" + shell_quote(inc.string());
+  cmd += " -I" + shell_quote(toolchain::kEigenInclude) + " -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name;
   if (p.lcm) {
-    run_or_throw(std::string(toolchain::kLcmGen) + " -x --cpp-hpath " + quote(tmp.string()) + " " +
-                     quote((tmp / (g.model.name + ".lcm")).string()),
+    run_or_throw(std::string(toolchain::kLcmGen) + " -x --cpp-hpath " + shell_quote(tmp.string()) + " " +
+                     shell_quote((tmp / (g.model.name + ".lcm")).string()),
                  "lcm-gen", tmp / "lcm-gen.log", options.verbose);
     cmd += " -DMBRT_MODEL_LCM_HEADER='\"" + g.model.name + "_lcm.hpp\"' -DMBRT_MODEL_CAN_HEADER='\"" + g.model.name +
            "_can.hpp\"'";
   } else {
     cmd += " -DMBRT_MODEL_HEADER='\"" + g.code.header_name + "\"'";
   }
-  cmd += " " + quote((tmp / g.code.source_name).string());
-  for (const fs::path& f : p.sources) cmd += " " + quote(f.string());
-  cmd += " -o " + quote((tmp / p.executable).string());
+  cmd += " " + shell_quote((tmp / g.code.source_name).string());
+  for (const fs::path& f : p.sources) cmd += " " + shell_quote(f.string());
+  cmd += " -o " + shell_quote((tmp / p.executable).string());
   if (p.lcm) cmd += std::string(" ") + toolchain::kLcmLibrary;
   if (!options.verbose) std::fprintf(stderr, "compiling %s %s (cached in %s)\n", g.model.name.c_str(), p.executable, dir.string().c_str());
   run_or_throw(cmd, "compiling the generated model", tmp / "compile.log", options.verbose);
@@ -174,8 +169,8 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
 
 int run_program(Program program, const std::string& model_path, const SimOptions& options) {
   const Generated g = generate(model_path, options.generate);
-  std::string cmd = quote(build_program(program, g, options));
-  for (const std::string& a : options.driver_args) cmd += " " + quote(a);
+  std::string cmd = shell_quote(build_program(program, g, options));
+  for (const std::string& a : options.driver_args) cmd += " " + shell_quote(a);
   std::fflush(stdout);
   const int rc = std::system(cmd.c_str());
   if (rc == -1) throw std::runtime_error("cannot start " + cmd);

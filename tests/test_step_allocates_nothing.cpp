@@ -21,8 +21,10 @@
 #include "actuated_lcm.hpp"
 #include "allocation_counter.hpp"
 #include "four_bar.hpp"
+#include "four_bar_general.hpp"
 #include "four_bar_nps.hpp"
 #include "heavy_top.hpp"
+#include "two_masses_special.hpp"
 
 TEST_CASE("the allocation counter sees heap allocations") {
   long seen = 0;
@@ -56,6 +58,8 @@ TEST_CASE("step() allocates nothing over 1e5 steps") {
   CHECK_NO_ALLOCATION(heavy_top, 100000);
   CHECK_NO_ALLOCATION(four_bar, 100000);
   CHECK_NO_ALLOCATION(four_bar_nps, 100000);  // staggered-nps: a tree and cut rows
+  CHECK_NO_ALLOCATION(four_bar_general, 100000);    // --no-specialize
+  CHECK_NO_ALLOCATION(two_masses_special, 100000);  // gravity-free, an unloaded body
 }
 
 TEST_CASE("the HIL cycle around the step allocates nothing") {

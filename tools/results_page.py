@@ -200,6 +200,52 @@ def stability(out):
         image(out, "chain_growth.png", "cost against chain length")
 
 
+def specializations(out):
+    paragraph(out, "## Specializations and the cost of a step")
+    paragraph(out, "What the generator's specializations save (docs/specializations.md): floating-point operations "
+               "and instructions per `step()` counted by `mbrt gen --report` in the compiled sim program under "
+               "callgrind, as specialized, with `--no-specialize` (general) and with each specialization that applies "
+               "turned off alone (`without NAME`); `check` is the instruction count of "
+               "`timing/instructions_per_step`, an independent route to the same figure; the predicted time is "
+               "the count times the calibration below, the measured one is `mbrt sim`'s (median of 3 runs; the "
+               "machine is shared, so measured times vary far more than the counts).")
+    data = measured(out, "specialization_counts", "timing/specialization_counts")
+    if data is not None:
+        table(out, ["model", "scheme", "variant", "flops per step", "instructions per step", "check",
+                    "source bytes", "executable bytes", "predicted ns", "measured ns"],
+              [[r["model"], r["scheme"], r["variant"], r["flops_per_step"], r["instructions_per_step"],
+                r["instructions_per_step_check"] or "-", r["source_bytes"], r["executable_bytes"],
+                r["predicted_ns_per_step"] or "-", r["ns_per_step"] or "-"] for r in data])
+        by_model = {}
+        for r in data:
+            by_model.setdefault(r["model"], {})[r["variant"]] = r
+        ratios = [[m, g(float(v["specialized"]["flops_per_step"]) / float(v["general"]["flops_per_step"])),
+                   g(float(v["specialized"]["instructions_per_step"]) / float(v["general"]["instructions_per_step"]))]
+                  for m, v in by_model.items() if "specialized" in v and "general" in v]
+        paragraph(out, "Specialized over general:")
+        table(out, ["model", "flops", "instructions"], ratios)
+        saved = [[m, variant[len("without "):],
+                  str(int(r["flops_per_step"]) - int(v["specialized"]["flops_per_step"])),
+                  str(int(r["instructions_per_step"]) - int(v["specialized"]["instructions_per_step"]))]
+                 for m, v in by_model.items() for variant, r in v.items() if variant.startswith("without ")]
+        paragraph(out, "Per step, what each specialization saves on its own (the model with only that one "
+                   "turned off, `--no-specialize=NAME`, minus the specialized model):")
+        table(out, ["model", "specialization", "flops saved", "instructions saved"], saved)
+    paragraph(out, "### Calibration of the predicted step time")
+    data = measured(out, "flop_calibration", "timing/flop_calibration")
+    if data is not None:
+        table(out, ["model", "scheme", "flops per step", "ns per step", "ns per flop"],
+              [[r["model"], r["scheme"], r["flops_per_step"], g(r["ns_per_step"]), g(r["ns_per_flop"])] for r in data])
+    paragraph(out, "### Generation and compile time of large models")
+    paragraph(out, "Wall times depend on the other jobs on the machine; CPU time (user + system) much less.")
+    data = measured(out, "generation_scale", "timing/generation_scale")
+    if data is not None:
+        table(out, ["model", "bodies", "constraint rows", "mbrt gen wall (s)", "mbrt gen CPU (s)", "source bytes",
+                    "compile wall (s)", "compile CPU (s)", "object bytes"],
+              [[r["model"], r["bodies"], r["constraint_rows"], g(r["gen_wall_s"]), g(r["gen_cpu_s"]),
+                r["source_bytes"], g(r["compile_wall_s"]), g(r["compile_cpu_s"]), r["object_bytes"]] for r in data])
+
+
 def bad_inputs(out):
     paragraph(out, "## Bad inputs")
     paragraph(out, "The model-file parser is fuzzed by libFuzzer with AddressSanitizer (fuzz/README.md): 60 s in "
@@ -227,6 +273,7 @@ def main():
     work_precision(out)
     wcet(out)
     stability(out)
+    specializations(out)
     bad_inputs(out)
     with open(PAGE, "w") as f:
         f.write("\n".join(out).rstrip("\n") + "\n")
