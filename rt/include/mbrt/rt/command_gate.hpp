@@ -58,6 +58,15 @@ struct GateTimes {
   std::int64_t max_age_ns;      // commands older than this on arrival are late
 };
 
+// An LCM command's age on arrival at now_us: it counts from the state it
+// answers (state_utime, when set), else from its own time stamp utime; all
+// three in microseconds, the age in nanoseconds. A command computed from old
+// data is late however quickly it was sent.
+inline std::int64_t lcm_command_age_ns(std::int64_t now_us, std::int64_t utime, std::int64_t state_utime) noexcept {
+  const std::int64_t born_us = state_utime > 0 ? state_utime : utime;
+  return (now_us - born_us) * 1000;
+}
+
 template <std::size_t N>
 class CommandGate {
  public:
