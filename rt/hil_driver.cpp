@@ -120,12 +120,10 @@ void on_command(const void* data, int size, void* context) {
   const model::CommandMessage& m = loop.command_message;
   model::Inputs values;
   model::unpack_inputs(m, values);
-  // Its age counts from the state it answers: a command computed from old
-  // data is late however quickly it was sent.
-  const std::int64_t now_us = realtime_us();
-  const std::int64_t born_us = m.state_utime > 0 ? m.state_utime : m.utime;
-  const CommandVerdict v = loop.gate.offer(m.seq, (now_us - born_us) * 1000, values, monotonic_ns());
-  if (v == CommandVerdict::applied && m.state_utime > 0) loop.stats.command_rtt_ns.record((now_us - m.state_utime) * 1000);
+  const std::int64_t age_ns = lcm_command_age_ns(realtime_us(), m.utime, m.state_utime);
+  const CommandVerdict v = loop.gate.offer(m.seq, age_ns, values, monotonic_ns());
+  // Answering a state, its age is the round trip from that state's publication.
+  if (v == CommandVerdict::applied && m.state_utime > 0) loop.stats.command_rtt_ns.record(age_ns);
 }
 
 void publish_state(Loop& loop, LcmBridge& bridge, const std::string& channel, std::int64_t cycle) {

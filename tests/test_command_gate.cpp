@@ -101,3 +101,25 @@ TEST_CASE("a restarted sequence is refused while the old one is still fresh") {
   REQUIRE(g.offer(100, 0, {3.0, 1.0}, 0) == CommandVerdict::applied);
   CHECK(g.offer(0, 0, {-3.0, 0.0}, 10 * kMs) == CommandVerdict::out_of_order);
 }
+
+TEST_CASE("an LCM command's age counts from the state it answers and saturates for absurd time stamps") {
+  constexpr std::int64_t now_us = 1'700'000'000'000'000;
+  CHECK(lcm_command_age_ns(now_us, now_us - 7, now_us - 20) == 20000);  // from the state it answers
+  CHECK(lcm_command_age_ns(now_us, now_us - 7, 0) == 7000);             // no state: from its own time stamp
+  // 1.8e16 us (570 years) old: in nanoseconds 2^64 + 384, which wrapped to a fresh 384 ns.
+  const std::int64_t ancient_us = now_us - 18'446'744'073'709'552;
+  CHECK(lcm_command_age_ns(now_us, ancient_us, 0) == std::numeric_limits<std::int64_t>::max());
+  Gate g(kInputs, kTimes);
+  CHECK(g.offer(0, lcm_command_age_ns(now_us, ancient_us, 0), {1.0, 1.0}, 0) == CommandVerdict::late);
+  CHECK(lcm_command_age_ns(now_us, std::numeric_limits<std::int64_t>::max(), 0) == std::numeric_limits<std::int64_t>::min());
+}
+
+TEST_CASE("a jump across the whole int64 range of sequence numbers saturates the missing count") {
+  constexpr std::int64_t lowest = std::numeric_limits<std::int64_t>::min(), highest = std::numeric_limits<std::int64_t>::max();
+  Gate g(kInputs, kTimes);
+  REQUIRE(g.offer(lowest, 0, {1.0, 1.0}, 0) == CommandVerdict::applied);
+  CHECK(g.offer(highest, 0, {2.0, 1.0}, 1 * kMs) == CommandVerdict::applied);
+  CHECK(g.counts().missing == highest);  // 2^64 - 2 never seen
+  CHECK(g.offer(highest, 0, {2.0, 1.0}, 2 * kMs) == CommandVerdict::duplicate);
+  CHECK(g.counts().missing == highest);
+}

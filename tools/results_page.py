@@ -246,20 +246,42 @@ def specializations(out):
                 r["source_bytes"], g(r["compile_wall_s"]), g(r["compile_cpu_s"]), r["object_bytes"]] for r in data])
 
 
+# The fuzz targets (fuzz/README.md): name, what it fuzzes.
+FUZZERS = [("model_parser", "Model-file parser"),
+           ("can_udp_wire", "CAN-over-UDP datagram decoder"),
+           ("can_command", "CAN command path: frames, assembler, gate"),
+           ("lcm_command", "LCM command path: decode, gate")]
+# File extensions of tests/fuzz_regressions/, one per target.
+REGRESSION_EXTENSIONS = ["yaml", "can_udp", "can_frames", "lcm_commands"]
+
+
+def fuzz_run(out, name, what):
+    paragraph(out, "### %s (`%s_fuzzer`)" % (what, name))
+    path = os.path.join(RESULTS, "fuzz_%s.txt" % name)
+    if not os.path.exists(path):
+        paragraph(out, "No long run recorded yet (`fuzz/run 600 build-fuzz %s_fuzzer`)." % name)
+        return
+    provenance(out, "fuzz_" + name)
+    with open(path) as f:
+        lines = [l.strip() for l in f]
+    stats = [l for l in lines if l.startswith("stat::") or "Done " in l]
+    failures = [l for l in lines if l.startswith("SUMMARY") or "Test unit written" in l]
+    if stats:
+        paragraph(out, "Last long run: " + "; ".join(stats) + ".")
+    paragraph(out, "Failures in it: " + ("; ".join(failures) if failures else "none") + ".")
+
+
 def bad_inputs(out):
     paragraph(out, "## Bad inputs")
-    paragraph(out, "The model-file parser is fuzzed by libFuzzer with AddressSanitizer (fuzz/README.md): 60 s in "
-               "every test run (ctest `fuzz_model_parser`), longer with `fuzz/run SECONDS`.")
-    path = os.path.join(RESULTS, "fuzz_model_parser.txt")
-    if os.path.exists(path):
-        provenance(out, "fuzz_model_parser")
-        with open(path) as f:
-            stats = [l.strip() for l in f if l.startswith("stat::") or "Done " in l]
-        if stats:
-            paragraph(out, "Last long run: " + "; ".join(stats) + ".")
-    found = sorted(os.path.basename(p) for p in glob.glob(os.path.join(ROOT, "tests", "fuzz_regressions", "*.yaml")))
-    out.append("Inputs that crashed the parser, now regression tests (`test_fuzz_regressions`): %s." % (
-        ", ".join("`%s`" % f for f in found) if found else "none"))
+    paragraph(out, "The model-file parser and the message decoders of the HIL loop are fuzzed by libFuzzer with "
+               "AddressSanitizer and UndefinedBehaviorSanitizer (fuzz/README.md): in every test run the parser "
+               "for 60 s and each decoder for 20 s (ctest `fuzz_*`), longer with `fuzz/run SECONDS`.")
+    for name, what in FUZZERS:
+        fuzz_run(out, name, what)
+    found = sorted(os.path.basename(p) for ext in REGRESSION_EXTENSIONS
+                   for p in glob.glob(os.path.join(ROOT, "tests", "fuzz_regressions", "*." + ext)))
+    out.append("Inputs a fuzzer failed on, now regression tests (`test_fuzz_regressions`, "
+               "tests/fuzz_regressions/README.md): %s." % (", ".join("`%s`" % f for f in found) if found else "none"))
     out.append("")
     paragraph(out, "Runtime bad inputs (a NaN or absurd value in the state or an input, a diverging step) return "
                "a status and leave the last good state: tests/test_bad_numbers.cpp.")

@@ -7,9 +7,11 @@
 // Pure logic: no clock, no I/O, no allocation; the caller passes the times.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <mbrt/model_api.hpp>
 
@@ -58,6 +60,21 @@ struct GateTimes {
   std::int64_t max_age_ns;      // commands older than this on arrival are late
 };
 
+// An LCM command's age on arrival at now_us: it counts from the state it
+// answers (state_utime, when set), else from its own time stamp utime; all
+// three in microseconds, the age in nanoseconds. A command computed from old
+// data is late however quickly it was sent. The time stamps come from the
+// network and may be any int64: an age beyond the int64 range saturates
+// instead of wrapping (an ancient command would otherwise pass as fresh).
+inline std::int64_t lcm_command_age_ns(std::int64_t now_us, std::int64_t utime, std::int64_t state_utime) noexcept {
+  const std::int64_t born_us = state_utime > 0 ? state_utime : utime;
+  std::int64_t age_us = 0, age_ns = 0;
+  if (__builtin_sub_overflow(now_us, born_us, &age_us) || __builtin_mul_overflow(age_us, 1000, &age_ns)) {
+    return now_us > born_us ? std::numeric_limits<std::int64_t>::max() : std::numeric_limits<std::int64_t>::min();
+  }
+  return age_ns;
+}
+
 template <std::size_t N>
 class CommandGate {
  public:
@@ -74,7 +91,13 @@ class CommandGate {
     const CommandVerdict v = judge(seq, age_ns, values, now_ns);
     ++counts_.by_verdict[static_cast<std::size_t>(v)];
     const bool ordered = has_sequence(now_ns);
-    if (ordered && seq > last_seen_seq_ + 1) counts_.missing += seq - last_seen_seq_ - 1;
+    if (ordered && seq > last_seen_seq_) {
+      // Sequence numbers come from the network and may be any int64: the
+      // gap is exact in uint64 (seq > last_seen_seq_), the count saturates.
+      const std::uint64_t gap = static_cast<std::uint64_t>(seq) - static_cast<std::uint64_t>(last_seen_seq_) - 1;
+      const auto room = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max() - counts_.missing);
+      counts_.missing += static_cast<std::int64_t>(std::min(gap, room));
+    }
     if (!ordered || seq > last_seen_seq_) last_seen_seq_ = seq;
     if (v != CommandVerdict::applied) return v;
     last_seq_ = seq;
