@@ -41,8 +41,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const std::array<model::Inputs, 4> kCommands{{{1.0, -3.0, 0.5}, {5.0, 20.0, -1.0}, {kNaN, 0.0, 0.0}, {0.0, 25.0, 0.0}}};
 
 // The frames of the model's states and commands.
-std::vector<can_frame> frames() {
-  std::vector<can_frame> all;
+std::vector<canfd_frame> frames() {
+  std::vector<canfd_frame> all;
   model::Outputs y{};
   for (std::size_t i = 0; i < y.size(); ++i) y[i] = 0.1 * static_cast<double>(i) - 0.3;
   model::can::StateFrames state;
@@ -58,11 +58,13 @@ std::vector<can_frame> frames() {
 
 // One datagram per frame, plus an extended and a remote frame.
 std::vector<Bytes> can_udp_seeds() {
-  std::vector<can_frame> all = frames();
-  all.push_back(mbrt::can::empty_frame(0x1234567 | CAN_EFF_FLAG, 3));
-  all.push_back(mbrt::can::empty_frame(model::can::kCommandId | CAN_RTR_FLAG, 0));
+  std::vector<canfd_frame> all = frames();
+  const mbrt::can::Layout fd{true, model::kOutputs, model::kInputs};
+  all.push_back(mbrt::can::empty_frame(model::can::kLayout, 0x1234567 | CAN_EFF_FLAG, 3));
+  all.push_back(mbrt::can::empty_frame(model::can::kLayout, model::can::kCommandId | CAN_RTR_FLAG, 0));
+  all.push_back(mbrt::can::empty_frame(fd, model::can::kCommandId, 16));
   std::vector<Bytes> seeds;
-  for (const can_frame& f : all) {
+  for (const canfd_frame& f : all) {
     std::uint8_t wire[mbrt::rt::kCanUdpMaxDatagram];
     seeds.emplace_back(wire, wire + mbrt::rt::encode_can_udp(f, 1.7e9, wire));
   }
@@ -72,7 +74,7 @@ std::vector<Bytes> can_udp_seeds() {
 // All frames in one run, 1 ms apart, commands 2 ms old.
 std::vector<Bytes> can_command_seeds() {
   Bytes run;
-  for (const can_frame& f : frames()) {
+  for (const canfd_frame& f : frames()) {
     append<std::uint8_t>(run, 1);
     append<std::uint8_t>(run, 2);
     append(run, f);
