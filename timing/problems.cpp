@@ -45,7 +45,7 @@ std::vector<Problem> make_problems() {
        sampled(reference::a02_b0_positions(1, 5.0, 0.05, 1e-5), 0.05, kPlane)},
       {"a02_n_four_bar_4", Mechanism::n_four_bar, 4, "crank_0", {0, 1, 0}, 2e-3,
        sampled(reference::a02_b0_positions(4, 5.0, 0.05, 1e-5), 0.05, kPlane)},
-      {"a03_andrews", Mechanism::andrews, 1, "crank", andrews::kF, 1.5e-5,
+      {"a03_andrews", Mechanism::andrews, 1, "crank", andrews::kF, 7.5e-5,
        andrews_crank_joint()},
       {"arm_3", Mechanism::chain, 3, "link_2", {3, 0, 0}, 1e-3,
        sampled(reference::chain_tip_positions(3, 2.0, 0.05, 1e-5), 0.05, kPlane)},
