@@ -121,4 +121,12 @@ inline std::vector<mbrt::Vec3> chain_tip_positions(int n, double t_end, double d
   return sampled_rk4(rest, rest, acc, tip, t_end, dt, h);
 }
 
+// Andrews' squeezer (Test Set for IVP Solvers, problem "andrews"): the crank
+// angle beta at t = 0.03 s of the Test Set's reference solution (deTestSet
+// `andsoln`, PSIDE at rtol = atol = 1e-14; also in test_benchmark_andrews.cpp)
+// and the crank's length rr, from O to its joint F at rr (cos beta, sin beta).
+inline constexpr double kAndrewsTime = 0.03;
+inline constexpr double kAndrewsCrankAngle = 0.1581077119629904e+2;
+inline constexpr double kAndrewsCrankLength = 0.007;
+
 }  // namespace reference

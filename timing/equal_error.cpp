@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <utility>
 
 namespace timing {
 
@@ -22,20 +23,33 @@ std::optional<double> seconds_at_error(std::vector<Measurement> curve, double er
   return best;
 }
 
-std::optional<double> ratio_to_mujoco(const Measurement& m, const std::vector<Measurement>& all) {
+std::optional<double> ratio_at_equal_error(const Measurement& m, const std::vector<Measurement>& all,
+                                           const std::function<bool(const Measurement&)>& is_reference) {
   if (m.failed) return std::nullopt;
-  std::set<std::string> methods;
+  std::set<std::pair<std::string, std::string>> curves;
   for (const Measurement& r : all)
-    if (r.problem == m.problem && r.engine == "mujoco") methods.insert(r.method);
+    if (r.problem == m.problem && is_reference(r)) curves.insert({r.engine, r.method});
   std::optional<double> fastest;
-  for (const std::string& method : methods) {
+  for (const auto& [engine, method] : curves) {
     std::vector<Measurement> curve;
     for (const Measurement& r : all)
-      if (r.problem == m.problem && r.engine == "mujoco" && r.method == method) curve.push_back(r);
+      if (r.problem == m.problem && r.engine == engine && r.method == method) curve.push_back(r);
     if (const auto s = seconds_at_error(curve, m.error)) fastest = fastest ? std::min(*fastest, *s) : *s;
   }
   if (!fastest) return std::nullopt;
   return m.seconds / *fastest;
+}
+
+std::optional<double> ratio_to_mujoco(const Measurement& m, const std::vector<Measurement>& all) {
+  return ratio_at_equal_error(m, all, [](const Measurement& r) { return r.engine == "mujoco"; });
+}
+
+std::optional<double> ratio_to_staggered_pcst(const Measurement& m, const std::vector<Measurement>& all) {
+  if (m.engine != "mbrt") return std::nullopt;
+  // The method names the scheme first, then the euler_updates where varied.
+  const size_t space = m.method.find(' ');
+  const std::string reference = "staggered-pcst" + (space == std::string::npos ? "" : m.method.substr(space));
+  return ratio_at_equal_error(m, all, [&](const Measurement& r) { return r.engine == "mbrt" && r.method == reference; });
 }
 
 }  // namespace timing

@@ -2,6 +2,7 @@
 // successive step sizes) interpolated in log-log at a given error.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -14,7 +15,16 @@ namespace timing {
 // neighbouring step sizes. Where several segments span it, the fastest.
 std::optional<double> seconds_at_error(std::vector<Measurement> curve, double error);
 
-// m's run time over the fastest MuJoCo integrator's run time at m's error.
+// m's run time over the run time, at m's error, of the fastest curve among
+// the runs of m's problem that is_reference accepts (a curve: one engine and
+// method).
+std::optional<double> ratio_at_equal_error(const Measurement& m, const std::vector<Measurement>& all,
+                                           const std::function<bool(const Measurement&)>& is_reference);
+
+// ... against the fastest MuJoCo integrator.
 std::optional<double> ratio_to_mujoco(const Measurement& m, const std::vector<Measurement>& all);
+
+// ... of an mbrt run against staggered-pcst with the same euler_updates.
+std::optional<double> ratio_to_staggered_pcst(const Measurement& m, const std::vector<Measurement>& all);
 
 }  // namespace timing

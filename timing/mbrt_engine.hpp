@@ -37,10 +37,11 @@ class MbrtEngine {
   mbrt::Vec3 offset_;
 };
 
+// method: the scheme, and its euler_updates where they are varied.
 template <class Model>
-Measurement run_mbrt(const Problem& p) {
+Measurement run_mbrt(const Problem& p, const std::string& method) {
   MbrtEngine<Model> engine(p);
-  return measure(p, engine, {p.name, "mbrt", Model::kScheme, Model::kStep});
+  return measure(p, engine, {p.name, "mbrt", method, Model::kStep});
 }
 
 }  // namespace timing

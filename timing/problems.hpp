@@ -12,7 +12,7 @@
 
 namespace timing {
 
-enum class Mechanism { a01_pendulum, heavy_top, n_four_bar, chain };
+enum class Mechanism { a01_pendulum, heavy_top, n_four_bar, chain, andrews };
 
 // The observed point at time t, compared on the axes where mask is 1.
 struct Observation {
@@ -38,6 +38,10 @@ inline double observation_error(const Observation& o, const mbrt::Vec3& observed
 
 const std::vector<Problem>& problems();
 const Problem& problem(const std::string& name);
+
+// Gravity of the mechanism, m/s^2: -z for the heavy top, none for Andrews'
+// squeezer, -y for the planar mechanisms.
+mbrt::Vec3 gravity(Mechanism m);
 
 // Peers' step sizes: base_step times 16, 8, 4, 2, 1, 1/2, 1/4 (their methods'
 // orders range from 1 to 4, so their errors span more than mbrt's).

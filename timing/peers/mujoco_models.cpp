@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "andrews_mechanism.hpp"
+
 namespace timing {
 namespace {
 
@@ -22,6 +24,12 @@ std::string rod(char axis) {
 
 const char* kHinge = "<joint type='hinge' axis='0 0 1'/>";
 
+// Loop closures as stiff as MuJoCo allows (time constant clamped to 2 steps,
+// impedance near 1).
+const char* kStiff = " solref='1e-6 1' solimp='0.9999 0.9999 0.001 0.5 2'";
+
+std::string vec(const mbrt::Vec3& v) { return num(v[0]) + " " + num(v[1]) + " " + num(v[2]); }
+
 std::string a01() {
   // The bar is massless: the body is the bob, a point mass (MuJoCo needs a
   // positive inertia; 1e-12 kg m^2 changes nothing at the compared digits).
@@ -37,8 +45,7 @@ std::string heavy_top() {
 }
 
 // Cranks pinned to the ground, each carrying the coupler to its right; the
-// coupler's far end is connected to the next crank's top. The constraint is
-// as stiff as MuJoCo allows (time constant clamped to 2 steps, impedance near 1).
+// coupler's far end is connected to the next crank's top.
 std::string n_four_bar(int n) {
   std::string bodies, equality, qvel;
   for (int i = 0; i <= n; ++i) {
@@ -48,7 +55,7 @@ std::string n_four_bar(int n) {
       bodies += "<body name='coupler_" + std::to_string(i) + "' pos='0 1 0'>" + kHinge + rod('x') + "</body>";
       qvel += " 1";  // couplers translate: +1 relative to the crank
       equality += "<connect body1='coupler_" + std::to_string(i) + "' body2='crank_" + std::to_string(i + 1) +
-                  "' anchor='1 0 0' solref='1e-6 1' solimp='0.9999 0.9999 0.001 0.5 2'/>";
+                  "' anchor='1 0 0'" + kStiff + "/>";
     }
     bodies += "</body>";
   }
@@ -65,12 +72,46 @@ std::string chain(int n) {
   return "<worldbody>" + open + close + "</worldbody>";
 }
 
+// The bodies whose parent is `parent`, nested, each frame at its centre of
+// mass (unrotated, so positions relative to the parent are differences).
+std::string andrews_tree(const std::string& parent) {
+  std::string out;
+  for (const andrews::Body& b : andrews::kBodies) {
+    if (parent != b.parent) continue;
+    out += "<body name='" + std::string(b.name) + "' pos='" + vec(b.com - andrews::com(b.parent)) + "'>" +
+           "<joint name='" + b.name + "' type='hinge' axis='0 0 1' pos='" + vec(b.pin - b.com) + "'/>" +
+           "<inertial pos='0 0 0' mass='" + num(b.mass) + "' diaginertia='" + vec(b.inertia) + "'/>";
+    if (std::string(b.name) == "triangle") out += "<site name='d' pos='" + vec(andrews::kD - b.com) + "'/>";
+    out += andrews_tree(b.name) + "</body>";
+  }
+  return out;
+}
+
+// Andrews' squeezer: the tree of andrews_mechanism.hpp, its loops closed by
+// `connect`, the spring a spatial tendon, the constant torque an actuator's
+// affine bias (its force whatever the control).
+std::string andrews_squeezer() {
+  std::string equality;
+  for (const andrews::Closure& c : andrews::kClosures) {
+    equality += "<connect body1='" + std::string(c.body1) + "'" +
+                (*c.body2 ? " body2='" + std::string(c.body2) + "'" : std::string()) + " anchor='" +
+                vec(c.point - andrews::com(c.body1)) + "'" + kStiff + "/>";
+  }
+  return "<worldbody><site name='c' pos='" + vec(andrews::kC) + "'/>" + andrews_tree("") + "</worldbody>" +
+         "<equality>" + equality + "</equality>" +
+         "<tendon><spatial stiffness='" + num(andrews::kSpringStiffness) + "' springlength='" +
+         num(andrews::kSpringRestLength) + "'><site site='d'/><site site='c'/></spatial></tendon>" +
+         "<actuator><general joint='crank' biastype='affine' biasprm='" + num(andrews::kCrankTorque) +
+         " 0 0'/></actuator>";
+}
+
 std::string mechanism(const Problem& p) {
   switch (p.mechanism) {
     case Mechanism::a01_pendulum: return a01();
     case Mechanism::heavy_top: return heavy_top();
     case Mechanism::n_four_bar: return n_four_bar(p.n);
     case Mechanism::chain: return chain(p.n);
+    case Mechanism::andrews: return andrews_squeezer();
   }
   throw std::logic_error("unknown mechanism");
 }
@@ -78,8 +119,8 @@ std::string mechanism(const Problem& p) {
 }  // namespace
 
 std::string mujoco_mjcf(const Problem& p) {
-  const std::string gravity = p.mechanism == Mechanism::heavy_top ? "0 0 -9.81" : "0 -9.81 0";
-  return "<mujoco model='" + p.name + "'><option gravity='" + gravity + "'/>" + mechanism(p) + "</mujoco>";
+  return "<mujoco model='" + p.name + "'><option gravity='" + vec(gravity(p.mechanism)) + "'/>" + mechanism(p) +
+         "</mujoco>";
 }
 
 }  // namespace timing

@@ -6,12 +6,16 @@
 
 #include <Simbody.h>
 
+#include "andrews_mechanism.hpp"
+
 namespace timing {
 namespace {
 
 // Constraint tolerance: far below every compared error, so the projection is
 // never what limits Simbody's accuracy.
 constexpr double kConstraintTolerance = 1e-10;
+
+SimTK::Vec3 vec(const mbrt::Vec3& v) { return {v[0], v[1], v[2]}; }
 
 // A body of the given mass, centre of mass and central inertia diag(i).
 SimTK::Body::Rigid rigid_body(double mass, const SimTK::Vec3& com, const SimTK::Vec3& i) {
@@ -28,14 +32,13 @@ SimTK::Body::Rigid rod(char axis) {
 class Mechanism {
  public:
   explicit Mechanism(const Problem& p) : matter_(system_), forces_(system_) {
-    const double g = 9.81;
-    SimTK::Force::UniformGravity(forces_, matter_,
-                                 p.mechanism == timing::Mechanism::heavy_top ? SimTK::Vec3(0, 0, -g) : SimTK::Vec3(0, -g, 0));
+    SimTK::Force::UniformGravity(forces_, matter_, vec(gravity(p.mechanism)));
     switch (p.mechanism) {
       case timing::Mechanism::a01_pendulum: build_a01(); break;
       case timing::Mechanism::heavy_top: build_heavy_top(); break;
       case timing::Mechanism::n_four_bar: build_n_four_bar(p.n); break;
       case timing::Mechanism::chain: build_chain(p.n); break;
+      case timing::Mechanism::andrews: build_andrews(); break;
     }
     state_ = system_.realizeTopology();
     system_.realize(state_, SimTK::Stage::Position);
@@ -91,6 +94,26 @@ class Mechanism {
   void build_chain(int n) {
     SimTK::MobilizedBody parent = matter_.Ground();
     for (int i = 0; i < n; ++i) parent = pin(parent, {i == 0 ? 0.0 : 1.0, 0, 0}, rod('x'), "link_" + std::to_string(i));
+  }
+
+  // The tree of andrews_mechanism.hpp, body frames at the centres of mass
+  // (unrotated); the loops closed by ball constraints.
+  void build_andrews() {
+    const auto mobilized = [this](const char* name) -> SimTK::MobilizedBody& {
+      return *name ? matter_.updMobilizedBody(bodies_.at(name)) : matter_.updGround();
+    };
+    for (const andrews::Body& b : andrews::kBodies) {
+      SimTK::MobilizedBody::Pin m(mobilized(b.parent), SimTK::Transform(vec(b.pin - andrews::com(b.parent))),
+                                  rigid_body(b.mass, {0, 0, 0}, vec(b.inertia)), SimTK::Transform(vec(b.pin - b.com)));
+      bodies_[b.name] = m.getMobilizedBodyIndex();
+    }
+    for (const andrews::Closure& c : andrews::kClosures)
+      SimTK::Constraint::Ball(mobilized(c.body1), vec(c.point - andrews::com(c.body1)), mobilized(c.body2),
+                              vec(c.point - andrews::com(c.body2)));
+    SimTK::Force::TwoPointLinearSpring(forces_, mobilized("triangle"), vec(andrews::kD - andrews::com("triangle")),
+                                       matter_.Ground(), vec(andrews::kC), andrews::kSpringStiffness,
+                                       andrews::kSpringRestLength);
+    SimTK::Force::MobilityConstantForce(forces_, mobilized("crank"), SimTK::MobilizerUIndex(0), andrews::kCrankTorque);
   }
 
   SimTK::MultibodySystem system_;
