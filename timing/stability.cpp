@@ -3,8 +3,10 @@
 // other (the heavy top, a body tumbling about its intermediate axis, the A01
 // pendulum). Conserved quantities are computed here from the body states and
 // the model files' inertias, not by mbrt.
-//   stability [STEPS=1e7] [DIR=.]
-// Writes DIR/stability_long_runs.csv (one line per model and scheme) and
+//   stability [STEPS=1e7] [DIR=.] [MODELS=all] [SCHEMES=all]
+// MODELS and SCHEMES are comma-separated names ("heavy_top,a01_pendulum",
+// "staggered-pcst") choosing the runs. Writes DIR/stability_long_runs.csv
+// (one line per model and scheme run) and
 // DIR/stability_series_<model>_<scheme>.csv (1000 samples of the drifts).
 #include <algorithm>
 #include <chrono>
@@ -79,6 +81,11 @@ Summary long_run(const std::string& model, long steps, const std::string& dir) {
   return sum;
 }
 
+// Whether a comma-separated list names `name` ("all" names everything).
+bool chosen(const std::string& list, const std::string& name) {
+  return list == "all" || ("," + list + ",").find("," + name + ",") != std::string::npos;
+}
+
 #define MBRT_ADAPT(model, ns) BENCH_MODEL(ns##_model, ns);
 MBRT_STABILITY_VARIANTS(MBRT_ADAPT)
 #undef MBRT_ADAPT
@@ -88,6 +95,7 @@ MBRT_STABILITY_VARIANTS(MBRT_ADAPT)
 int main(int argc, char** argv) {
   const long steps = argc > 1 ? static_cast<long>(std::atof(argv[1])) : 10000000L;
   const std::string dir = argc > 2 ? argv[2] : ".";
+  const std::string models = argc > 3 ? argv[3] : "all", schemes = argc > 4 ? argv[4] : "all";
   const std::string path = dir + "/stability_long_runs.csv";
   std::FILE* csv = std::fopen(path.c_str(), "w");
   if (!csv) {
@@ -97,7 +105,7 @@ int main(int argc, char** argv) {
   std::fprintf(csv, "model,scheme,h,steps,t_end,failed_steps,max_energy_drift_J,max_momentum_drift,"
                     "max_quaternion_norm_error,max_position_violation,intermediate_axis_flips,ns_per_step\n");
 #define MBRT_LONG_RUN(model, ns)                                                                                  \
-  {                                                                                                               \
+  if (chosen(models, #model) && chosen(schemes, ns##_model::kScheme)) {                                          \
     const Summary r = long_run<ns##_model>(#model, steps, dir);                                                   \
     std::fprintf(csv, "%s,%s,%g,%ld,%g,%ld,%.3g,%.3g,%.3g,%.3g,%ld,%.1f\n", #model, ns##_model::kScheme,           \
                  ns##_model::kStep, r.steps, static_cast<double>(r.steps) * ns##_model::kStep, r.failed,           \

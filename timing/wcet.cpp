@@ -2,6 +2,11 @@
 //   wcet warm N HIST.csv          per-step times of N consecutive steps
 //   wcet cold N HIST.csv [MB=64]  the same, caches evicted before every step
 //                                 by writing MB megabytes
+//   wcet realtime N HIST.csv [PRIORITY=80] [CPU=last]
+//                                 warm, at SCHED_FIFO PRIORITY, pinned to CPU,
+//                                 memory locked (rt/realtime_setup), resting
+//                                 between bursts of 1000 steps; fails if the
+//                                 scheduler, pinning or locking is refused
 //   wcet instructions N EVERY     under callgrind (--collect-atstart=no):
 //                                 collects only inside every EVERY-th step and
 //                                 dumps after it, one count per sampled step
@@ -16,10 +21,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include <unistd.h>
 #include <valgrind/callgrind.h>
 
+#include "mbrt/rt/realtime_setup.hpp"
 #include "wcet_model.hpp"
 
 namespace {
@@ -79,17 +87,26 @@ void write_histogram(const std::vector<double>& sorted, const char* path) {
   std::fclose(f);
 }
 
-int timed(const char* mode, long n, const char* histogram, size_t evict_mb) {
+// rest: after every 1000 steps, sleep as long as they took. A SCHED_FIFO
+// thread that never sleeps is throttled by the kernel (sched_rt_runtime_us,
+// 50 ms of every second by default), which a periodic loop never meets.
+int timed(const char* mode, long n, const char* histogram, size_t evict_mb, bool rest = false) {
   std::vector<double> ns(static_cast<size_t>(n));
   CacheEvictor evictor(evict_mb);
   model::State s = model::initial_state();
   for (int i = 0; i < 10000; ++i) model::step(s);  // warm caches and branch predictors
   long failed = 0;
-  for (double& x : ns) {
+  auto burst = Clock::now();
+  for (size_t i = 0; i < ns.size(); ++i) {
+    if (rest && i % 1000 == 0) {
+      const auto now = Clock::now();
+      std::this_thread::sleep_for(now - burst);
+      burst = Clock::now();
+    }
     if (evict_mb > 0) evictor.evict();
     const auto a = Clock::now();
     failed += model::step(s) != mbrt::StepStatus::ok;
-    x = ns_between(a, Clock::now());
+    ns[i] = ns_between(a, Clock::now());
   }
   std::sort(ns.begin(), ns.end());
   write_histogram(ns, histogram);
@@ -97,6 +114,18 @@ int timed(const char* mode, long n, const char* histogram, size_t evict_mb) {
   std::printf("%s,%ld,%ld,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.2f,%.2f\n", mode, n, failed, timer_ns(), ns.front(), median,
               quantile(ns, 0.99), p9999, ns.back(), ns.back() / median, p9999 / median);
   return 0;
+}
+
+// The warm run as a HIL loop runs it: real-time scheduler, one CPU, locked
+// memory. A refused step would make it the plain warm run under another
+// name, so that is an error here rather than the loop's warning.
+int realtime(long n, const char* histogram, int priority, int cpu) {
+  const mbrt::rt::RealtimeStatus status = mbrt::rt::prepare_realtime({priority, cpu});
+  if (!status.fifo || !status.pinned || !status.memory_locked) {
+    std::fprintf(stderr, "wcet realtime: not permitted here:\n%s", status.warnings.c_str());
+    return 1;
+  }
+  return timed("realtime", n, histogram, 0, true);
 }
 
 int instructions(long n, long every) {
@@ -114,7 +143,9 @@ int instructions(long n, long every) {
 }
 
 int usage() {
-  std::fprintf(stderr, "usage: wcet warm N HIST.csv | wcet cold N HIST.csv [MB] | wcet instructions N EVERY\n");
+  std::fprintf(stderr,
+               "usage: wcet warm N HIST.csv | wcet cold N HIST.csv [MB] | wcet realtime N HIST.csv [PRIORITY] [CPU] |"
+               " wcet instructions N EVERY\n");
   return 2;
 }
 
@@ -127,6 +158,10 @@ int main(int argc, char** argv) {
   if (n < 1) return usage();
   if (mode == "warm") return timed("warm", n, argv[3], 0);
   if (mode == "cold") return timed("cold", n, argv[3], argc > 4 ? std::strtoul(argv[4], nullptr, 10) : 64);
+  if (mode == "realtime") {
+    const int last_cpu = static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN)) - 1;
+    return realtime(n, argv[3], argc > 4 ? std::atoi(argv[4]) : 80, argc > 5 ? std::atoi(argv[5]) : last_cpu);
+  }
   if (mode == "instructions") return instructions(n, std::max(1L, std::atol(argv[3])));
   return usage();
 }

@@ -170,10 +170,11 @@ def wcet(out):
         return
     paragraph(out,
         "Per-step times of `step()` (steady clock around each call; `timer` is the cost of reading it), "
-        "warm, with the caches evicted before every step (64 MB written), and warm under `stress-ng` "
-        "on every core; the instructions of 200 sampled steps counted by callgrind, each step alone. "
-        "The process runs at normal priority on a shared virtual machine without isolated cores, so "
-        "the largest times include preemption by other processes; the instruction count is the figure "
+        "warm, with the caches evicted before every step (64 MB written), warm under `stress-ng` "
+        "on every core, and (`realtime_loaded`) under the same load at `SCHED_FIFO` priority 80, pinned "
+        "to one CPU with memory locked, as `mbrt hil --fifo 80 --cpu N` runs; the instructions of 200 sampled steps counted by callgrind, each step alone. "
+        "The machine is a shared virtual machine without isolated cores, so even at real-time "
+        "priority the largest times include the hypervisor's preemption; the instruction count is the figure "
         "that does not depend on the machine.")
     for f in files:
         tag = os.path.basename(f)[:-4]
