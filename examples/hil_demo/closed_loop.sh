@@ -2,7 +2,8 @@
 # Runs the arm in mbrt's real-time loop and a PD controller in its own
 # process, both on LCM URL $1, for $2 seconds, then prints the loop's timing
 # and the controller's tracking error. Reports go to directory $3. The loop
-# runs at $4 Hz (default 1000) with one step of 1/$4 s per cycle.
+# runs at $4 Hz (default 1000) with one step of 1/$4 s per cycle; the
+# environment's HIL_OPTIONS are added to its command line (e.g. --fifo 80 --cpu 1).
 set -euo pipefail
 url=$1 seconds=$2 out=$3 rate=${4:-1000}
 cd "$(dirname "$0")/../.."
@@ -14,7 +15,8 @@ step=$(python3 -c "print(repr(1.0 / $rate))")
 "$mbrt" hil "$model" --h "$step" --lcm "$url" --rate "$rate" --duration 0 >/dev/null
 "$mbrt" stub "$model" --lcm "$url" --duration 0 >/dev/null
 
-"$mbrt" hil "$model" --h "$step" --lcm "$url" --rate "$rate" --duration "$seconds" --report "$out/hil.json" >/dev/null &
+# shellcheck disable=SC2086  # HIL_OPTIONS is a list of words
+"$mbrt" hil "$model" --h "$step" --lcm "$url" --rate "$rate" --duration "$seconds" --report "$out/hil.json" ${HIL_OPTIONS:-} >/dev/null &
 sim=$!
 sleep 0.3
 "$mbrt" stub "$model" --lcm "$url" --duration "$(python3 -c "print($seconds - 0.6)")" \
