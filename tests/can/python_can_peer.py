@@ -146,7 +146,9 @@ if mode == "peer":
         check(rejected[reason] == n, f"{reason} rejections {rejected[reason]} == {n}")
     check(sim["commands_missing"] == 0, f"nothing missing ({sim['commands_missing']})")
     check(VALID + 2 in command_seqs, "the states reported the last applied command's sequence number")
-    check(len(command_seqs) > 1000 and not odd_states,
+    # Of the loop's 3000 states a loaded machine drops some in the peer's socket
+    # buffer; a few hundred are plenty to show the frames' kind and lengths.
+    check(len(command_seqs) > 300 and not odd_states,
           f"{len(command_seqs)} states, all in {kind} frames of the DBC's lengths (others: {odd_states[:3]})")
     check(sim["state_finite"] is True and sim["step_failures"] == 0, "the state stayed finite")
 else:
