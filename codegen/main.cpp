@@ -38,8 +38,8 @@ instructions, its code size and predicted time (docs/specializations.md).
 sim generates, compiles (cached by content hash under $MBRT_CACHE_DIR or
 ~/.cache/mbrt) and runs the model; its last line on stdout is a JSON summary.
 hil runs the model in a real-time loop that publishes its outputs and takes
-commands over LCM or a CAN bus (BUS: udp://GROUP:PORT or a SocketCAN interface
-such as vcan0; --can-fd: CAN FD frames of up to 64 bytes, which hil and stub
+commands over LCM or a CAN bus (BUS: udp://GROUP:PORT, udp://[IPv6 GROUP]:PORT
+or a SocketCAN interface such as vcan0; --can-fd: CAN FD frames of up to 64 bytes, which hil and stub
 must both be given); stub runs a PD controller for it; both print a JSON report.
 See docs/hil.md.
 )";

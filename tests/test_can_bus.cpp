@@ -1,9 +1,10 @@
 // The CAN buses: over UDP multicast (loopback, TTL 0) a classic or CAN FD
 // frame sent arrives whole, a datagram that is not a CAN message (or not a
 // well-formed CAN FD one) is counted, and sending and
-// receiving allocate nothing; a SocketCAN interface that does not exist is
-// refused at start-up. Needs a network with multicast on loopback: ctest runs
-// it inside scripts/in-private-network.
+// receiving allocate nothing, on an IPv4 group as on an IPv6 one; a bad
+// group or port, or a SocketCAN interface that does not exist, is refused at
+// start-up. Needs a network with multicast on loopback: ctest runs it inside
+// scripts/in-private-network, the "IPv6:" cases with IPv6 multicast there too.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -23,6 +24,7 @@
 
 namespace {
 constexpr const char* kBus = "udp://239.74.163.2:43114";
+constexpr const char* kBus6 = "udp://[ff15:7079:7468:6f6e:6465:6d6f:6d63:6173]:43114";  // python-can's IPv6 group
 
 canfd_frame test_frame(canid_t id, std::uint8_t len = 5, std::uint8_t flags = 0) {
   canfd_frame f{};
@@ -44,8 +46,9 @@ int receive_some(mbrt::rt::CanBus& bus, canfd_frame* frames, int max) {
 }
 }  // namespace
 
-TEST_CASE("a frame crosses the UDP bus whole; extended and remote flags included") {
-  auto a = mbrt::rt::open_can_bus(kBus, false), b = mbrt::rt::open_can_bus(kBus, false);
+namespace {
+void check_frames_cross(const char* spec) {
+  auto a = mbrt::rt::open_can_bus(spec, false), b = mbrt::rt::open_can_bus(spec, false);
   for (const canid_t id : {canid_t{0x123}, canid_t{0x1abcdef | CAN_EFF_FLAG}, canid_t{0x7ff | CAN_RTR_FLAG}}) {
     const canfd_frame sent = test_frame(id);
     REQUIRE(a->send(sent));
@@ -58,6 +61,11 @@ TEST_CASE("a frame crosses the UDP bus whole; extended and remote flags included
     }
   }
 }
+}  // namespace
+
+TEST_CASE("a frame crosses the UDP bus whole; extended and remote flags included") { check_frames_cross(kBus); }
+
+TEST_CASE("IPv6: a frame crosses the UDP bus whole; extended and remote flags included") { check_frames_cross(kBus6); }
 
 TEST_CASE("a CAN FD frame crosses the UDP bus whole, its flags included") {
   auto a = mbrt::rt::open_can_bus(kBus, true), b = mbrt::rt::open_can_bus(kBus, true);
@@ -125,8 +133,9 @@ TEST_CASE("malformed CAN FD datagrams are counted, not delivered") {
   expect_undecodable(*bus, 3);
 }
 
-TEST_CASE("sending and receiving on the UDP bus allocates nothing") {
-  auto a = mbrt::rt::open_can_bus(kBus, false), b = mbrt::rt::open_can_bus(kBus, false);
+namespace {
+void check_no_allocations(const char* spec) {
+  auto a = mbrt::rt::open_can_bus(spec, false), b = mbrt::rt::open_can_bus(spec, false);
   std::array<canfd_frame, 32> got{};
   const canfd_frame f = test_frame(0x200);
   long received = 0, seen = 0;
@@ -143,6 +152,11 @@ TEST_CASE("sending and receiving on the UDP bus allocates nothing") {
   CHECK(received > 1000);  // the receive path really ran
   CHECK(seen == 0);
 }
+}  // namespace
+
+TEST_CASE("sending and receiving on the UDP bus allocates nothing") { check_no_allocations(kBus); }
+
+TEST_CASE("IPv6: sending and receiving on the UDP bus allocates nothing") { check_no_allocations(kBus6); }
 
 TEST_CASE("bad bus names are refused at start-up") {
   for (const bool fd : {false, true}) {
@@ -150,5 +164,16 @@ TEST_CASE("bad bus names are refused at start-up") {
     CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://10.0.0.1:43114", fd), std::runtime_error);  // not multicast
     CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://239.74.163.2", fd), std::runtime_error);
     CHECK_THROWS_AS(mbrt::rt::open_can_bus("udp://239.74.163.2:x", fd), std::runtime_error);
+    // IPv6 groups: refused before any socket is opened, each message naming what is wrong.
+    CHECK_THROWS_WITH_AS(mbrt::rt::open_can_bus("udp://[2001:db8::1]:43114", fd),
+                         "'2001:db8::1' is not an IPv6 multicast group", std::runtime_error);
+    CHECK_THROWS_WITH_AS(mbrt::rt::open_can_bus("udp://[ff15::x]:43114", fd),
+                         "'ff15::x' is not an IPv4 or IPv6 multicast group", std::runtime_error);
+    CHECK_THROWS_WITH_AS(mbrt::rt::open_can_bus("udp://ff15::1:43114", fd),
+                         doctest::Contains("an IPv6 group goes in brackets"), std::runtime_error);
+    CHECK_THROWS_WITH_AS(mbrt::rt::open_can_bus("udp://[ff15::1]", fd),
+                         doctest::Contains("expected udp://GROUP:PORT"), std::runtime_error);
+    CHECK_THROWS_WITH_AS(mbrt::rt::open_can_bus("udp://[ff15::1]:x", fd),
+                         "bad port in 'udp://[ff15::1]:x'", std::runtime_error);
   }
 }

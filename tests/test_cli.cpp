@@ -202,3 +202,12 @@ TEST_CASE("mbrt hil refuses a model without inputs and outputs before compiling 
   CHECK(r.err.find("needs both inputs and outputs") != std::string::npos);
   CHECK(r.err.find("compiling") == std::string::npos);
 }
+
+TEST_CASE("mbrt hil refuses an IPv6 LCM group, saying that LCM's udpm provider is IPv4-only") {
+  for (const std::string url : {"udpm://[ff15::1]:7667?ttl=0", "udpm://ff15::1:7667"}) {
+    const Run r = mbrt("hil " + model("actuated.yaml") + " --lcm '" + url + "' --duration 0");
+    INFO(r.err);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("cannot open LCM at '" + url + "': LCM's udpm provider is IPv4-only") != std::string::npos);
+  }
+}

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """`mbrt hil --can udp://...` against python-can's udp_multicast bus (run
 inside scripts/in-private-network: loopback only, TTL 0), in classic CAN
-frames or, with `fd`, CAN FD frames (the model generated with --can-fd). The
+frames or, with `fd`, CAN FD frames (the model generated with --can-fd), on
+python-can's default IPv4 or IPv6 group (`ipv6`: the namespace made with
+in-private-network --ipv6). The
 peer reads the model's DBC (tests/can/dbc.py), answers the states with
 command frames, and sends one of each fault; the loop's report must count
 exactly those.
@@ -13,7 +15,7 @@ exactly those.
         package, holds the commands the peer sent, value for value, and
         states whose seq and t agree. Skipped (77) without node or candied.
 
-usage: python_can_peer.py MBRT MODEL WORK_DIR peer|log classic|fd [NODE_MODULES]
+usage: python_can_peer.py MBRT MODEL WORK_DIR peer|log classic|fd ipv4|ipv6 [NODE_MODULES]
 """
 import json
 import os
@@ -30,21 +32,27 @@ from hil_test import check, environment, finish  # noqa: E402
 
 try:
     import can
+    from can.interfaces.udp_multicast import UdpMulticastBus
 except ImportError:
     print("SKIP: python3-can is not installed")
     sys.exit(77)
 
-GROUP, PORT = "239.74.163.2", 43113  # python-can's IPv4 default group and port
-BUS = f"udp://{GROUP}:{PORT}"
+PORT = 43113  # python-can's default port; its default groups below
 STATE_ID, COMMAND_ID = 0x100, 0x200
 INT32_MIN = -(1 << 31)
 MAX_AGE_S = 1.0  # generous: a busy machine must not make a command late
 VALID = 40       # valid commands the peer sends
 FD_LENGTHS = [*range(9), 12, 16, 20, 24, 32, 48, 64]
 
-mbrt, model, work, mode, kind = sys.argv[1:6]
-node_modules = sys.argv[6] if len(sys.argv) > 6 else ""
+mbrt, model, work, mode, kind, family = sys.argv[1:7]
+node_modules = sys.argv[7] if len(sys.argv) > 7 else ""
 FD = kind == "fd"
+if family == "ipv6":
+    GROUP = UdpMulticastBus.DEFAULT_GROUP_IPv6
+    BUS = f"udp://[{GROUP}]:{PORT}"
+else:
+    GROUP = UdpMulticastBus.DEFAULT_GROUP_IPv4
+    BUS = f"udp://{GROUP}:{PORT}"
 GEN = ["--can-fd"] if FD else []
 if mode == "log" and (shutil.which("node") is None or not os.path.isdir(os.path.join(node_modules, "candied"))):
     print(f"SKIP: node or the candied package ({node_modules}) is missing; scripts/install-deps installs them")
@@ -127,8 +135,11 @@ for k, (wrong_length, is_fd, _) in enumerate(malformed):
     send(VALID + 3 + k, [raw(0.0)] * n_inputs, wrong_length, is_fd)
 take_states(0.3)
 bus.shutdown()  # python-can raises on the datagram that follows
-with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:  # not msgpack at all
-    s.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, 0)
+with socket.socket(socket.AF_INET6 if family == "ipv6" else socket.AF_INET, socket.SOCK_DGRAM) as s:  # not msgpack at all
+    if family == "ipv6":
+        s.setsockopt(socket.IPPROTO_IPV6, socket.IPV6_MULTICAST_HOPS, 0)
+    else:
+        s.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, 0)
     s.sendto(b"\x93not a CAN message", (GROUP, PORT))
 code = hil.wait(timeout=600)
 check(code == 0, f"mbrt hil exit code {code}")

@@ -1,7 +1,8 @@
 // A CAN bus the HIL programs send and receive classic and CAN FD frames on:
 // raw SocketCAN (`vcan0`, `can0`: any interface name) or CAN over UDP
-// multicast in python-can's `udp_multicast` format (`udp://GROUP:PORT`, TTL
-// 0, so datagrams never leave the host). Frames are `canfd_frame`s, CAN FD
+// multicast in python-can's `udp_multicast` format (`udp://GROUP:PORT` or
+// `udp://[GROUP]:PORT` for an IPv6 group; TTL or hop limit 0, so datagrams
+// never leave the host). Frames are `canfd_frame`s, CAN FD
 // ones marked by CANFD_FDF in their flags (mbrt/can_frames.hpp). Opened at
 // start-up (throws there); send and receive never block, never throw and
 // allocate nothing.
@@ -27,7 +28,8 @@ class CanBus {
   long undecodable_ = 0;
 };
 
-// "udp://GROUP:PORT" (IPv4 multicast group) or a SocketCAN interface name.
+// "udp://GROUP:PORT" (IPv4 multicast group), "udp://[GROUP]:PORT" (IPv6
+// multicast group) or a SocketCAN interface name.
 // fd: CAN FD frames will be sent, so a SocketCAN interface must have the CAN
 // FD MTU (refused at start-up otherwise, rather than every send failing).
 std::unique_ptr<CanBus> open_can_bus(const std::string& spec, bool fd);

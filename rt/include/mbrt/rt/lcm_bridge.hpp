@@ -2,7 +2,8 @@
 // subscribed channel to a handler, without blocking unless asked to. The
 // connection is made at start-up (and throws there); publish and receive
 // never throw and, once warmed up, allocate nothing, liblcm included
-// (test_lcm_allocates_nothing).
+// (test_lcm_allocates_nothing). LCM's udpm provider takes IPv4 groups only:
+// a URL with an IPv6 group is refused, saying so.
 #pragma once
 
 #include <string>

@@ -34,7 +34,7 @@ struct LinkOptions {
   std::string report;
   std::string state_channel;
   std::string command_channel;
-  std::string can_bus;  // udp://GROUP:PORT or a SocketCAN interface
+  std::string can_bus;  // udp://GROUP:PORT, udp://[IPv6 GROUP]:PORT or a SocketCAN interface
   std::string can_log;  // candump log of the frames sent and received
 };
 
