@@ -325,12 +325,7 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
     << "Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  Rows y;\n";
   if (blocks() == 0) o << "  (void)c;\n  (void)u;\n";
   for (int ji = 0; ji < blocks(); ++ji) {
-    o << "  " << seg("y", ji) << " = ";
-    const auto mb = moving_bodies(ji);
-    for (size_t q = 0; q < mb.size(); ++q) {
-      o << (q ? " + " : "") << "c.rows_" << jname(ji) << "." << side(ji, mb[q]) << " * u[" << mb[q] << "]";
-    }
-    o << ";\n";
+    o << "  " << seg("y", ji) << " = " << jacobian_product(ji, "u") << ";\n";
   }
   o << "  return y;\n}\n\n";
   if (scheme_kind() != Scheme::nps) {
@@ -431,6 +426,14 @@ void Emitter::stacked(std::ostringstream& o, const std::string& member) const {
 
 std::string Emitter::seg(const std::string& v, int j) const {
   return v + ".segment<" + std::to_string(rows(j)) + ">(" + std::to_string(first_row(j)) + ")";
+}
+
+std::string Emitter::jacobian_product(int j, const std::string& u) const {
+  std::string e;
+  for (int b : moving_bodies(j)) {
+    e += (e.empty() ? "c.rows_" : " + c.rows_") + jname(j) + "." + side(j, b) + " * " + u + "[" + std::to_string(b) + "]";
+  }
+  return e;
 }
 
 std::string Emitter::s_block(int i, int j) const {

@@ -40,13 +40,6 @@ std::vector<std::string> Emitter::null_space_columns(const TreeBody& tb) const {
   }
 }
 
-// Joints whose first rows make the joint points coincide: the transfer from
-// the parent is anchored at the joint point.
-bool Emitter::has_coincidence_rows(JointType type) const {
-  return type == JointType::spherical || type == JointType::revolute || type == JointType::universal ||
-         type == JointType::fixed;
-}
-
 // Whether the columns need to_child = R_child^T R_parent.
 bool Emitter::carries_parent_axes(const TreeBody& tb) const {
   const JointType type = m_.joints[static_cast<size_t>(tb.joint)].type;
@@ -54,36 +47,27 @@ bool Emitter::carries_parent_axes(const TreeBody& tb) const {
   return tb.child_is_body2 || type == JointType::universal;
 }
 
-// H^T x, H z and M H for one tree body; a free body's H is the identity (a
-// particle's: the translations).
+// H^T x and H z for one tree body. A free body that reaches elimination has
+// children, so it is rigid (tree joints join rigid bodies only): H = I.
 std::string Emitter::h_transpose_times(const TreeBody& tb, const std::string& x) const {
-  if (tb.joint >= 0) return "t.H_" + idx(tb.body) + ".transpose() * " + x;
-  return tb.dofs == 6 ? x : "mbrt::Vec3(" + x + ".head<3>())";
+  return tb.joint >= 0 ? "t.H_" + idx(tb.body) + ".transpose() * " + x : x;
 }
 
 std::string Emitter::h_times(const TreeBody& tb, const std::string& z) const {
-  if (tb.joint >= 0) return "t.H_" + idx(tb.body) + " * " + z;
-  return tb.dofs == 6 ? z : "(mbrt::Vec6() << " + z + ", mbrt::Vec3::Zero()).finished()";
-}
-
-bool Emitter::tree_leaf(const TreeBody& tb) const {
-  for (const TreeBody& other : a_.tree.order) {
-    if (other.parent == tb.body) return false;
-  }
-  return true;
+  return tb.joint >= 0 ? "t.H_" + idx(tb.body) + " * " + z : z;
 }
 
 // A free body without children needs no elimination: u' = M^-1 force.
-bool Emitter::free_leaf(const TreeBody& tb) const { return tb.joint < 0 && tree_leaf(tb); }
+bool Emitter::free_leaf(const TreeBody& tb) const { return tb.joint < 0 && tb.leaf; }
 
 // IA x; a leaf's articulated inertia is its mass matrix, which is sparse.
 std::string Emitter::ia_times(const TreeBody& tb, const std::string& x) const {
-  if (tree_leaf(tb)) return "mbrt::mass_times(" + mass_of(tb.body) + ", " + x + ")";
+  if (tb.leaf) return "mbrt::mass_times(" + mass_of(tb.body) + ", " + x + ")";
   return "t.IA_" + idx(tb.body) + " * " + x;
 }
 
 std::string Emitter::ia_matrix(const TreeBody& tb) const {
-  return tree_leaf(tb) ? "mbrt::mass_matrix(" + mass_of(tb.body) + ")" : "t.IA_" + idx(tb.body);
+  return tb.leaf ? "mbrt::mass_matrix(" + mass_of(tb.body) + ")" : "t.IA_" + idx(tb.body);
 }
 
 void Emitter::nps_workspace(std::ostringstream& o) const {
@@ -96,7 +80,7 @@ void Emitter::nps_workspace(std::ostringstream& o) const {
   for (const TreeBody& tb : tree.order) {
     const std::string i = idx(tb.body);
     o << "  // " << body(tb.body).name << "\n";
-    if (!tree_leaf(tb)) o << "  mbrt::Mat6 IA_" << i << ";\n";
+    if (!tb.leaf) o << "  mbrt::Mat6 IA_" << i << ";\n";
     if (tb.joint >= 0 && tb.dofs > 0) o << "  " << block_type(6, tb.dofs) << " H_" << i << ";\n";
     if (tb.dofs > 0 && !free_leaf(tb)) o << "  " << block_type(tb.dofs, tb.dofs) << " L_" << i << ";\n";
     if (tb.parent != kGround) {
@@ -108,7 +92,7 @@ void Emitter::nps_workspace(std::ostringstream& o) const {
         << "  " << block_type(rows(tb.joint), rows(tb.joint)) << " G_" << i << ";\n";
     }
   }
-  if (tree.cut_rows > 0) o << "  Eigen::Matrix<double, kCutRows, kCutRows> S_cut;  // Cholesky factor\n";
+  if (nps_cuts()) o << "  Eigen::Matrix<double, kCutRows, kCutRows> S_cut;  // Cholesky factor\n";
   o << "};\n\n";
 }
 
@@ -120,7 +104,7 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
     << "  bool positive = true;\n";
   if (blocks() == 0) o << "  (void)c;\n";
   for (const TreeBody& tb : tree.order) {
-    if (!tree_leaf(tb)) o << "  t.IA_" << tb.body << " = mbrt::mass_matrix(" << mass_of(tb.body) << ");\n";
+    if (!tb.leaf) o << "  t.IA_" << tb.body << " = mbrt::mass_matrix(" << mass_of(tb.body) << ");\n";
   }
   for (size_t n = tree.order.size(); n-- > 0;) {
     const TreeBody& tb = tree.order[n];
@@ -137,11 +121,11 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
     }
     if (tb.joint >= 0 && tb.dofs > 0) {
       o << "    const " << block_type(6, tb.dofs) << " U = "
-        << (tree_leaf(tb) ? "mbrt::mass_times_columns(" + mass_of(tb.body) + ", t.H_" + i + ")" : "t.IA_" + i + " * t.H_" + i)
+        << (tb.leaf ? "mbrt::mass_times_columns(" + mass_of(tb.body) + ", t.H_" + i + ")" : "t.IA_" + i + " * t.H_" + i)
         << ";\n"
         << "    t.L_" << i << " = t.H_" << i << ".transpose() * U;\n";
-    } else if (tb.joint < 0) {  // a free body: H = I (a particle's: the translations)
-      o << "    t.L_" << i << " = " << ia_matrix(tb) << (tb.dofs == 6 ? "" : ".topLeftCorner<3, 3>()") << ";\n";
+    } else if (tb.joint < 0) {  // a free body with children: H = I
+      o << "    t.L_" << i << " = t.IA_" << i << ";\n";
     }
     if (tb.dofs > 0) o << "    positive = mbrt::cholesky_in_place(t.L_" << i << ") && positive;\n";
     if (tb.parent != kGround) {
@@ -172,23 +156,27 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
   o << "  return positive;\n}\n\n";
 }
 
-// tree_solve with targets gives the particular parts and the multipliers;
-// tree_response (targets zero) only the accelerations, for projections and
-// the cut rows.
+// tree_solve with targets gives the particular parts and what the
+// multipliers need; tree_response (targets zero) only the accelerations, for
+// projections and the cut rows.
 void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
   const TreePlan& tree = a_.tree;
   if (with_targets) {
-    o << "// (t, force, target) => (acc, tree rows of lambda): the body accelerations\n"
-      << "// u' = D z' + a_p with B u' = target on the tree rows and D^T (M u' - force)\n"
-      << "// = 0, and the tree joints' multipliers from the force each one carries.\n"
-      << "// a_p = Q G^-1 target is a particular solution per joint. Leaves first,\n"
-      << "// then from the roots.\n"
-      << "void tree_solve(const TreeSystem& t, const BodyVectors& force, const Rows& target, BodyVectors& acc,\n"
-      << "                Rows& lambda) noexcept {\n"
+    o << "// What tree_solve leaves per body for tree_multipliers.\n"
+      << "struct TreeSolution {\n"
+      << "  BodyVectors acc;   // u'\n"
       << "  BodyVectors g;     // IA a_p - force + what the children pass on\n"
       << "  BodyVectors part;  // a_p\n"
+      << "};\n\n"
+      << "// (t, force, target) => (x): the body accelerations u' = D z' + a_p with\n"
+      << "// B u' = target on the tree rows and D^T (M u' - force) = 0. a_p = Q G^-1\n"
+      << "// target is a particular solution per joint. Leaves first, then from the\n"
+      << "// roots.\n"
+      << "void tree_solve(const TreeSystem& t, const BodyVectors& force, const Rows& target,\n"
+      << "                TreeSolution& x) noexcept {\n"
+      << "  BodyVectors& acc = x.acc;\n  BodyVectors& g = x.g;\n  BodyVectors& part = x.part;\n"
       << "  for (int b = 0; b < kBodies; ++b) {\n    g[b] = -force[b];\n    part[b].setZero();\n  }\n";
-    if (blocks() == 0) o << "  (void)target;\n  (void)lambda;\n";
+    if (blocks() == 0) o << "  (void)target;\n";
   } else {
     o << "// (t, force) => (acc): u' = D z' with D^T (M u' - force) = 0, the tree's\n"
       << "// response to a force (with a momentum as force: the M-orthogonal\n"
@@ -242,15 +230,30 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
       o << ";\n    mbrt::solve_lower_transposed(t.L_" << i << ", z);\n"
         << "    acc[" << i << "] += " << h_times(tb, "z") << ";\n";
     }
-    if (with_targets && tb.joint >= 0) {
-      // The joint's force on the child, -B^T lambda = IA (u' - a_p) + g.
-      o << "    " << rows_type(rows(tb.joint)) << " l = -(t.Q_" << i << ".transpose() * ("
-        << ia_times(tb, "mbrt::Vec6(acc[" + i + "] - part[" + i + "])") << " + g[" << i << "]));\n"
-        << "    mbrt::solve_lower_transposed(t.G_" << i << ", l);\n"
-        << "    " << seg("lambda", tb.joint) << " = l;\n";
-    }
     o << "  }\n";
   }
+  o << "}\n\n";
+}
+
+// The tree joints' multipliers from the force each one carries, apart from
+// tree_solve: with cut rows, constraint_forces solves the tree twice and
+// needs them from the second solve only.
+void Emitter::nps_tree_multipliers(std::ostringstream& o) const {
+  o << "// (t, x) => (tree rows of lambda): each tree joint's force on its child,\n"
+    << "// -B^T lambda = IA (u' - a_p) + g.\n"
+    << "void tree_multipliers(const TreeSystem& t, const TreeSolution& x, Rows& lambda) noexcept {\n";
+  bool joints = false;
+  for (const TreeBody& tb : a_.tree.order) {
+    if (tb.joint < 0) continue;
+    const std::string i = idx(tb.body);
+    joints = true;
+    o << "  {  // " << body(tb.body).name << "\n"
+      << "    " << rows_type(rows(tb.joint)) << " l = -(t.Q_" << i << ".transpose() * ("
+      << ia_times(tb, "mbrt::Vec6(x.acc[" + i + "] - x.part[" + i + "])") << " + x.g[" << i << "]));\n"
+      << "    mbrt::solve_lower_transposed(t.G_" << i << ", l);\n"
+      << "    " << seg("lambda", tb.joint) << " = l;\n  }\n";
+  }
+  if (!joints) o << "  (void)t;\n  (void)x;\n  (void)lambda;\n";
   o << "}\n\n";
 }
 
@@ -262,6 +265,14 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
   int offset = 0;
   for (int j : tree.cut_blocks) {
     o << "  y.segment<" << rows(j) << ">(" << offset << ") = " << seg("x", j) << ";  // " << jname(j) << "\n";
+    offset += rows(j);
+  }
+  o << "  return y;\n}\n\n"
+    << "// (c, u) => (B_cut u): jacobian_times on the cut rows alone\n"
+    << "CutRows cut_jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  CutRows y;\n";
+  offset = 0;
+  for (int j : tree.cut_blocks) {
+    o << "  y.segment<" << rows(j) << ">(" << offset << ") = " << jacobian_product(j, "u") << ";\n";
     offset += rows(j);
   }
   o << "  return y;\n}\n\n"
@@ -283,7 +294,7 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
     << "  BodyVectors acc;\n"
     << "  for (int r = 0; r < kCutRows; ++r) {\n"
     << "    tree_response(t, cut_forces(c, CutRows::Unit(r)), acc);\n"
-    << "    t.S_cut.col(r) = cut_rows_of(jacobian_times(c, acc));\n  }\n"
+    << "    t.S_cut.col(r) = cut_jacobian_times(c, acc);\n  }\n"
     << "  t.S_cut.diagonal().array() += kRegularization;\n"
     << "  return mbrt::cholesky_in_place(t.S_cut);\n}\n\n"
     << "// (t, x) => (x): x := S_cut^-1 x\n"
@@ -298,11 +309,11 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
 }
 
 void Emitter::nps_stages(std::ostringstream& o) const {
-  const bool cuts = a_.tree.cut_rows > 0;
   nps_factorize(o);
   nps_tree_solve(o, true);
+  nps_tree_multipliers(o);
   nps_tree_solve(o, false);
-  if (cuts) nps_cut_rows(o);
+  if (nps_cuts()) nps_cut_rows(o);
   o << "// (c, t, l, u_half) => (u): implicit stage. u is the M-orthogonal projection\n"
     << "// of u_half + h/2 M^-1 F onto the tree's velocity constraints (a tree solve\n"
     << "// with the momentum as force), then onto the cut rows, regularized as in\n"
@@ -315,8 +326,10 @@ void Emitter::nps_stages(std::ostringstream& o) const {
       << "]) + (0.5 * h) * mbrt::as_vector(l.w[" << i << "]);\n";
   }
   o << "  tree_response(t, momentum, u);\n";
-  if (cuts) {
-    o << "  CutRows mu = cut_rows_of(velocity_residual(c, u));\n  solve_cut(t, mu);\n"
+  if (nps_cuts()) {
+    // velocity_residual on the cut rows: B_cut u + phi_t
+    o << "  CutRows mu = cut_jacobian_times(c, u)" << (a_.rheonomic ? " + cut_rows_of(stacked_phi_t(c))" : "")
+      << ";\n  solve_cut(t, mu);\n"
       << "  subtract_cut_response(t, c, mu, u);\n";
   } else {
     o << "  (void)c;\n";
@@ -331,19 +344,19 @@ void Emitter::nps_stages(std::ostringstream& o) const {
     << "  const Rows target = -(stacked_quad(c) + (2.0 / h) * (velocity_residual(c, generalized_velocities(s)) +\n"
     << "                                                        kStabilization * phi));\n"
     << "  BodyVectors f;\n  for (int b = 0; b < kBodies; ++b) f[b] = mbrt::as_vector(l.w[b]);\n"
-    << "  BodyVectors a;\n  tree_solve(t, f, target, a, s.lambda);\n";
-  if (cuts) {
-    o << "  CutRows lambda_cut = cut_rows_of(jacobian_times(c, a) - target);\n  solve_cut(t, lambda_cut);\n"
+    << "  TreeSolution x;\n  tree_solve(t, f, target, x);\n";
+  if (nps_cuts()) {
+    o << "  CutRows lambda_cut = cut_jacobian_times(c, x.acc) - cut_rows_of(target);\n  solve_cut(t, lambda_cut);\n"
       << "  const BodyVectors f_cut = cut_forces(c, lambda_cut);\n"
       << "  for (int b = 0; b < kBodies; ++b) f[b] -= f_cut[b];\n"
-      << "  tree_solve(t, f, target, a, s.lambda);\n";
+      << "  tree_solve(t, f, target, x);\n";
     int offset = 0;
     for (int j : a_.tree.cut_blocks) {
       o << "  " << seg("s.lambda", j) << " = lambda_cut.segment<" << rows(j) << ">(" << offset << ");\n";
       offset += rows(j);
     }
   }
-  o << "  set_accelerations(a, s);\n}\n\n";
+  o << "  tree_multipliers(t, x, s.lambda);\n  set_accelerations(x.acc, s);\n}\n\n";
 }
 
 }  // namespace mbrt::codegen

@@ -103,6 +103,8 @@ class Emitter {
   std::string seg(const std::string& v, int j) const;
   // Expression for block S(i, j) = sum over shared moving bodies of B_i M^-1 B_j^T.
   std::string s_block(int i, int j) const;
+  // Expression for B_j u: block j's Jacobian times its moving bodies' entries of u.
+  std::string jacobian_product(int j, const std::string& u) const;
   void mass_products(std::ostringstream& o) const;
   // constraint_forces(c, l, phi, s): S lambda = B M^-1 F + quad + stabilization.
   void constraint_forces_function(std::ostringstream& o, const std::string& stabilization) const;
@@ -142,13 +144,12 @@ class Emitter {
   bool nps_cuts() const { return a_.tree.cut_rows > 0; }
   std::vector<std::string> null_space_columns(const TreeBody& tb) const;
   bool carries_parent_axes(const TreeBody& tb) const;
-  bool has_coincidence_rows(JointType type) const;
   std::string h_transpose_times(const TreeBody& tb, const std::string& x) const;
   std::string h_times(const TreeBody& tb, const std::string& z) const;
   void nps_workspace(std::ostringstream& o) const;
   void nps_factorize(std::ostringstream& o) const;
   void nps_tree_solve(std::ostringstream& o, bool with_targets) const;
-  bool tree_leaf(const TreeBody& tb) const;
+  void nps_tree_multipliers(std::ostringstream& o) const;
   bool free_leaf(const TreeBody& tb) const;
   std::string ia_times(const TreeBody& tb, const std::string& x) const;
   std::string ia_matrix(const TreeBody& tb) const;

@@ -22,14 +22,21 @@ bool is_tree_joint(JointType type) {
 
 int tree_joint_dofs(JointType type) { return 6 - constraint_rows(type); }
 
+bool has_coincidence_rows(JointType type) {
+  return type == JointType::spherical || type == JointType::revolute || type == JointType::universal ||
+         type == JointType::fixed;
+}
+
 TreePlan plan_tree(const Model& model, const std::vector<ConstraintBlock>& blocks) {
   const size_t bodies = model.bodies.size();
-  std::vector<bool> placed(bodies, false), used(blocks.size(), false);
+  std::vector<bool> used(blocks.size(), false);
+  std::vector<int> position(bodies, -1);  // index in t.order; -1: not placed yet
   TreePlan t;
-  auto in_tree = [&](int b) { return b == kGround || placed[static_cast<size_t>(b)]; };
+  auto in_tree = [&](int b) { return b == kGround || position[static_cast<size_t>(b)] >= 0; };
   auto rigid = [&](int b) { return b == kGround || !model.bodies[static_cast<size_t>(b)].particle; };
   auto place = [&](TreeBody tb) {
-    placed[static_cast<size_t>(tb.body)] = true;
+    position[static_cast<size_t>(tb.body)] = static_cast<int>(t.order.size());
+    if (tb.parent != kGround) t.order[static_cast<size_t>(position[static_cast<size_t>(tb.parent)])].leaf = false;
     t.order.push_back(tb);
   };
   while (t.order.size() < bodies) {
@@ -51,7 +58,7 @@ TreePlan plan_tree(const Model& model, const std::vector<ConstraintBlock>& block
     }
     // A body no tree joint reaches moves freely; its own subtree hangs from it.
     for (size_t b = 0; b < bodies; ++b) {
-      if (placed[b]) continue;
+      if (position[b] >= 0) continue;
       place({static_cast<int>(b), kGround, -1, true, model.bodies[b].particle ? 3 : 6});
       break;
     }

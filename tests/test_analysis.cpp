@@ -132,6 +132,7 @@ TEST_CASE("staggered-nps: the tree takes each link's pin, the closing joint beco
     CHECK(tb.joint == i);
     CHECK(tb.child_is_body2);
     CHECK(tb.dofs == 1);
+    CHECK(tb.leaf == (i == 3));
   }
   CHECK(a.tree.cut_blocks == std::vector<int>{4});
   CHECK(a.tree.cut_rows == 3);
@@ -156,11 +157,15 @@ solver: {scheme: staggered-nps}
   CHECK(an.tree.order[0].body == 0);
   CHECK(an.tree.order[0].joint == -1);
   CHECK(an.tree.order[0].dofs == 6);
+  CHECK_FALSE(an.tree.order[0].leaf);
   CHECK(an.tree.order[1].body == 1);
   CHECK(an.tree.order[1].parent == 0);
   CHECK_FALSE(an.tree.order[1].child_is_body2);
+  CHECK(an.tree.order[1].leaf);
+  // Tree joints join rigid bodies only, so a particle is a free leaf.
   CHECK(an.tree.order[2].body == 2);
   CHECK(an.tree.order[2].dofs == 3);
+  CHECK(an.tree.order[2].leaf);
   CHECK(an.tree.cut_blocks == std::vector<int>{1});
 }
 

@@ -10,12 +10,6 @@ namespace mbrt {
 
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-inline Mat6 mass_matrix(const PointMass& b) noexcept {
-  Mat6 m = Mat6::Zero();
-  m.topLeftCorner<3, 3>().diagonal().setConstant(b.m);
-  return m;
-}
-
 inline Mat6 mass_matrix(const PrincipalInertia& b) noexcept {
   Mat6 m = Mat6::Zero();
   m.topLeftCorner<3, 3>().diagonal().setConstant(b.m);
