@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Sourced by the timing scripts that count instructions per step.
 # callgrind_total CMD [ARG...]: the instructions CMD executes, its children
 # included, counted by valgrind's callgrind (a figure that does not depend on

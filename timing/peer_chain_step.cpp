@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -54,9 +55,7 @@ int usage() {
   return 2;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   if (argc == 2 && std::string(argv[1]) == "--list") {
     for (const Peer& p : peers()) std::printf("%s\n", p.name.c_str());
     return 0;
@@ -95,4 +94,16 @@ int main(int argc, char** argv) {
               n, name.c_str(), h, done, engine->time(), done ? 1e9 * seconds / done : 0.0, tip[0], tip[1], tip[2],
               ok ? "ok" : "failed");
   return ok ? 0 : 3;
+}
+
+}  // namespace
+
+// An engine that cannot load the chain throws.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "peer_chain_step: %s\n", e.what());
+    return 1;
+  }
 }

@@ -11,13 +11,18 @@
 namespace timing {
 namespace {
 
-mjModel* load(const std::string& mjcf) {
+void add_file(mjVFS* vfs, const std::string& name, const std::string& text) {
+  if (mj_makeEmptyFileVFS(vfs, name.c_str(), static_cast<int>(text.size())) != 0)
+    throw std::runtime_error("MuJoCo: cannot make a virtual file");
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs, name.c_str())], text.data(), text.size());
+}
+
+mjModel* load(const Mjcf& mjcf) {
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
   const char* file = "model.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), file, static_cast<int>(mjcf.size())) != 0)
-    throw std::runtime_error("MuJoCo: cannot make a virtual file");
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file)], mjcf.data(), mjcf.size());
+  add_file(vfs.get(), file, mjcf.main);
+  for (const auto& [name, text] : mjcf.includes) add_file(vfs.get(), name, text);
   char error[1000] = "";
   mjModel* m = mj_loadXML(file, vfs.get(), error, sizeof error);
   mj_deleteVFS(vfs.get());
