@@ -11,13 +11,18 @@
 namespace timing {
 namespace {
 
-mjModel* load(const std::string& mjcf) {
+void add_file(mjVFS* vfs, const std::string& name, const std::string& text) {
+  if (mj_makeEmptyFileVFS(vfs, name.c_str(), static_cast<int>(text.size())) != 0)
+    throw std::runtime_error("MuJoCo: cannot make a virtual file");
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs, name.c_str())], text.data(), text.size());
+}
+
+mjModel* load(const Mjcf& mjcf) {
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
   const char* file = "model.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), file, static_cast<int>(mjcf.size())) != 0)
-    throw std::runtime_error("MuJoCo: cannot make a virtual file");
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file)], mjcf.data(), mjcf.size());
+  add_file(vfs.get(), file, mjcf.main);
+  for (const auto& [name, text] : mjcf.includes) add_file(vfs.get(), name, text);
   char error[1000] = "";
   mjModel* m = mj_loadXML(file, vfs.get(), error, sizeof error);
   mj_deleteVFS(vfs.get());
@@ -25,7 +30,7 @@ mjModel* load(const std::string& mjcf) {
   return m;
 }
 
-class MujocoEngine {
+class MujocoEngine final : public PeerEngine {
  public:
   MujocoEngine(const Problem& p, mjtIntegrator integrator, double h) : model_(load(mujoco_mjcf(p))) {
     model_->opt.timestep = h;
@@ -37,7 +42,7 @@ class MujocoEngine {
     mj_kinematics(model_, data_);
     for (int i = 0; i < 3; ++i) offset_[i] = p.point[i] - data_->xpos[3 * body_ + i];  // bodies start unrotated
   }
-  ~MujocoEngine() {
+  ~MujocoEngine() override {
     mj_deleteData(data_);
     mj_deleteModel(model_);
   }
@@ -45,12 +50,12 @@ class MujocoEngine {
   MujocoEngine& operator=(const MujocoEngine&) = delete;
 
   // MuJoCo resets the state when accelerations go bad: that is a failure.
-  bool step() {
+  bool step() override {
     mj_step(model_, data_);
     return data_->warning[mjWARN_BADQACC].number == 0;
   }
-  double time() const { return data_->time; }
-  mbrt::Vec3 observed() {
+  double time() const override { return data_->time; }
+  mbrt::Vec3 observed() override {
     mj_kinematics(model_, data_);
     const mjtNum* x = data_->xpos + 3 * body_;
     const mjtNum* r = data_->xmat + 9 * body_;  // row-major body-to-world
@@ -66,6 +71,8 @@ class MujocoEngine {
   mbrt::Vec3 offset_;
 };
 
+mjtIntegrator integrator(const std::string& method) { return method == "rk4" ? mjINT_RK4 : mjINT_EULER; }
+
 }  // namespace
 
 const std::vector<std::string>& mujoco_methods() {
@@ -74,8 +81,12 @@ const std::vector<std::string>& mujoco_methods() {
 }
 
 Measurement run_mujoco(const Problem& p, const std::string& method, double h) {
-  MujocoEngine engine(p, method == "rk4" ? mjINT_RK4 : mjINT_EULER, h);
+  MujocoEngine engine(p, integrator(method), h);
   return measure(p, engine, {p.name, "mujoco", method, h});
+}
+
+std::unique_ptr<PeerEngine> mujoco_engine(const Problem& p, const std::string& method, double h) {
+  return std::make_unique<MujocoEngine>(p, integrator(method), h);
 }
 
 }  // namespace timing

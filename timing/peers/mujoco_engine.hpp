@@ -2,10 +2,12 @@
 // problem's MJCF (mujoco_models.hpp).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "measure.hpp"
+#include "peer_engine.hpp"
 
 namespace timing {
 
@@ -13,5 +15,8 @@ namespace timing {
 const std::vector<std::string>& mujoco_methods();
 
 Measurement run_mujoco(const Problem& p, const std::string& method, double h);
+
+// The problem's mechanism in MuJoCo at rest, ready to step.
+std::unique_ptr<PeerEngine> mujoco_engine(const Problem& p, const std::string& method, double h);
 
 }  // namespace timing

@@ -1,5 +1,6 @@
 #include "mujoco_models.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
@@ -63,13 +64,23 @@ std::string n_four_bar(int n) {
          "'/></keyframe>";
 }
 
-std::string chain(int n) {
-  std::string open, close;
-  for (int i = 0; i < n; ++i) {
-    open += "<body name='link_" + std::to_string(i) + "' pos='" + (i == 0 ? "0" : "1") + " 0 0'>" + kHinge + rod('x');
-    close += "</body>";
+// MuJoCo's XML parser refuses elements nested about 100 deep, and MJCF nests
+// a chain's bodies: longer chains go on in included files, kChainPart links each.
+constexpr int kChainPart = 32;
+
+std::string chain(int n, Mjcf& out) {
+  std::string rest;  // the links after this part, as an include
+  for (int a = (n - 1) / kChainPart * kChainPart;; a -= kChainPart) {
+    std::string open, close;
+    for (int i = a; i < std::min(a + kChainPart, n); ++i) {
+      open += "<body name='link_" + std::to_string(i) + "' pos='" + (i == 0 ? "0" : "1") + " 0 0'>" + kHinge + rod('x');
+      close += "</body>";
+    }
+    if (a == 0) return "<worldbody>" + open + rest + close + "</worldbody>";
+    const std::string file = "chain_from_" + std::to_string(a) + ".xml";
+    out.includes.push_back({file, "<mujoco>" + open + rest + close + "</mujoco>"});
+    rest = "<include file='" + file + "'/>";
   }
-  return "<worldbody>" + open + close + "</worldbody>";
 }
 
 // The bodies whose parent is `parent`, nested, each frame at its centre of
@@ -105,12 +116,12 @@ std::string andrews_squeezer() {
          " 0 0'/></actuator>";
 }
 
-std::string mechanism(const Problem& p) {
+std::string mechanism(const Problem& p, Mjcf& out) {
   switch (p.mechanism) {
     case Mechanism::a01_pendulum: return a01();
     case Mechanism::heavy_top: return heavy_top();
     case Mechanism::n_four_bar: return n_four_bar(p.n);
-    case Mechanism::chain: return chain(p.n);
+    case Mechanism::chain: return chain(p.n, out);
     case Mechanism::andrews: return andrews_squeezer();
   }
   throw std::logic_error("unknown mechanism");
@@ -118,9 +129,11 @@ std::string mechanism(const Problem& p) {
 
 }  // namespace
 
-std::string mujoco_mjcf(const Problem& p) {
-  return "<mujoco model='" + p.name + "'><option gravity='" + vec(gravity(p.mechanism)) + "'/>" + mechanism(p) +
-         "</mujoco>";
+Mjcf mujoco_mjcf(const Problem& p) {
+  Mjcf out;
+  out.main = "<mujoco model='" + p.name + "'><option gravity='" + vec(gravity(p.mechanism)) + "'/>" + mechanism(p, out) +
+             "</mujoco>";
+  return out;
 }
 
 }  // namespace timing

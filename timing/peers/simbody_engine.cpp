@@ -136,7 +136,7 @@ std::unique_ptr<SimTK::Integrator> integrator(const std::string& method, SimTK::
   return out;
 }
 
-class SimbodyEngine {
+class SimbodyEngine final : public PeerEngine {
  public:
   SimbodyEngine(const Problem& p, const std::string& method, double h)
       : mechanism_(p), integrator_(integrator(method, mechanism_.system(), h)), body_(mechanism_.body(p.body)), h_(h) {
@@ -145,7 +145,7 @@ class SimbodyEngine {
     integrator_->initialize(s);
   }
   // Simbody throws when a step fails (e.g. the projection does not converge).
-  bool step() {
+  bool step() override {
     try {
       integrator_->stepTo(integrator_->getTime() + h_);
       return true;
@@ -153,8 +153,8 @@ class SimbodyEngine {
       return false;
     }
   }
-  double time() const { return integrator_->getTime(); }
-  mbrt::Vec3 observed() const {
+  double time() const override { return integrator_->getTime(); }
+  mbrt::Vec3 observed() override {
     const SimTK::Vec3 x = body_.findStationLocationInGround(integrator_->getState(), station_);
     return {x[0], x[1], x[2]};
   }
@@ -177,6 +177,10 @@ const std::vector<std::string>& simbody_methods() {
 Measurement run_simbody(const Problem& p, const std::string& method, double h) {
   SimbodyEngine engine(p, method, h);
   return measure(p, engine, {p.name, "simbody", method, h});
+}
+
+std::unique_ptr<PeerEngine> simbody_engine(const Problem& p, const std::string& method, double h) {
+  return std::make_unique<SimbodyEngine>(p, method, h);
 }
 
 }  // namespace timing

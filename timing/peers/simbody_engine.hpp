@@ -3,10 +3,12 @@
 // ball constraints and projected back onto them after each step.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "measure.hpp"
+#include "peer_engine.hpp"
 
 namespace timing {
 
@@ -14,5 +16,8 @@ namespace timing {
 const std::vector<std::string>& simbody_methods();
 
 Measurement run_simbody(const Problem& p, const std::string& method, double h);
+
+// The problem's mechanism in Simbody at its initial state, ready to step.
+std::unique_ptr<PeerEngine> simbody_engine(const Problem& p, const std::string& method, double h);
 
 }  // namespace timing
