@@ -397,7 +397,10 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   Eigen::VectorXd s_diagonal;  // of S at t = 0
   if (a.constraint_rows > 0) {
     const StackedConstraints c = evaluate_constraints(model, a.constraints, 0.0);
-    s_diagonal = (c.B * inverse_mass_matrix(model) * c.B.transpose()).diagonal();
+    // diag(B M^-1 B^T), row by row: B's rows are sparse and M^-1 block-diagonal.
+    const Eigen::SparseMatrix<double> b = c.B.sparseView();
+    const Eigen::SparseMatrix<double> b_m_inv = b * inverse_mass_matrix(model);
+    s_diagonal = b_m_inv.cwiseProduct(b) * Eigen::VectorXd::Ones(b.cols());
     a.regularization = model.solver.penalty * s_diagonal.maxCoeff();
   }
   if (model.solver.scheme == "ali3p") a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);

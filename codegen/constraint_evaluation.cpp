@@ -78,14 +78,20 @@ StackedConstraints evaluate_constraints(const Model& model, const std::vector<Co
   return out;
 }
 
-Eigen::MatrixXd inverse_mass_matrix(const Model& model) {
-  const int n = static_cast<int>(model.bodies.size());
-  Eigen::MatrixXd m_inv = Eigen::MatrixXd::Zero(6 * n, 6 * n);
-  for (int i = 0; i < n; ++i) {
-    const Body& b = model.bodies[static_cast<size_t>(i)];
-    m_inv.block<3, 3>(6 * i, 6 * i) = Eigen::Matrix3d::Identity() / b.mass;
-    if (!b.particle) m_inv.block<3, 3>(6 * i + 3, 6 * i + 3) = b.inertia.inverse();
+Eigen::SparseMatrix<double> inverse_mass_matrix(const Model& model) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    const int k = 6 * static_cast<int>(i);
+    for (int d = 0; d < 3; ++d) entries.emplace_back(k + d, k + d, 1.0 / b.mass);
+    if (b.particle) continue;
+    const Eigen::Matrix3d j_inv = b.inertia.inverse();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) entries.emplace_back(k + 3 + r, k + 3 + c, j_inv(r, c));
   }
+  const int n = 6 * static_cast<int>(model.bodies.size());
+  Eigen::SparseMatrix<double> m_inv(n, n);
+  m_inv.setFromTriplets(entries.begin(), entries.end());
   return m_inv;
 }
 

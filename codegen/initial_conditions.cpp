@@ -17,7 +17,7 @@ int block_of_row(const Analysis& a, Eigen::Index row) {
 }
 
 // du = -M^-1 B^T S^+ r: the M-orthogonal correction that removes residual r.
-Eigen::VectorXd correction(const StackedConstraints& c, const Eigen::MatrixXd& m_inv, const Eigen::VectorXd& r) {
+Eigen::VectorXd correction(const StackedConstraints& c, const Eigen::SparseMatrix<double>& m_inv, const Eigen::VectorXd& r) {
   const Eigen::MatrixXd S = c.B * m_inv * c.B.transpose();
   return -m_inv * c.B.transpose() * S.completeOrthogonalDecomposition().solve(r);
 }
@@ -38,7 +38,7 @@ InitialResidual initial_residual(const Model& model, const Analysis& analysis) {
 
 void project_initial_state(Model& model, const Analysis& analysis) {
   if (analysis.constraint_rows == 0) return;
-  const Eigen::MatrixXd m_inv = inverse_mass_matrix(model);
+  const Eigen::SparseMatrix<double> m_inv = inverse_mass_matrix(model);
   const int max_iterations = 50;
   int iteration = 0;
   for (;; ++iteration) {
