@@ -39,4 +39,10 @@ struct Skipped {
   std::string removed;
 };
 
+// One specialization turned on that the scene did not allow, and why.
+struct NotApplied {
+  std::string specialization;
+  std::string reason;
+};
+
 }  // namespace mbrt::codegen
