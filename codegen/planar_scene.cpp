@@ -22,8 +22,13 @@ std::string body_refusal(const Body& b) {
   return "";
 }
 
-// Planar kernel and in-plane rows of a joint, or a refusal.
+// Planar kernel and in-plane rows of a joint, or a refusal. A joint point
+// off its body's plane z = z_COM would take out-of-plane reactions (and let
+// a spherical joint tilt the body).
 std::string planar_joint(const Model& model, const Joint& j, ConstraintBlock& block) {
+  if ((j.body1 != kGround && block.frame.s1.z() != 0.0) || (j.body2 != kGround && block.frame.s2.z() != 0.0)) {
+    return "joint " + j.name + " is off the plane of a body's centre of mass";
+  }
   switch (j.type) {
     case JointType::revolute:
       if (!along_z(j.axis)) return "the axis of joint " + j.name + " is not z";
