@@ -282,6 +282,10 @@ void Emitter::loads_stage(std::ostringstream& o) const {
   for (size_t e = 0; e < a_.forces.size(); ++e) {
     const Force& f = m_.forces[static_cast<size_t>(a_.forces[e].model_index)];
     const std::string n = "force_" + std::to_string(e);
+    if (planar_) {
+      planar_force_load(o, f, n);
+      continue;
+    }
     switch (f.type) {
       case ForceType::spring_damper:
         o << "  {  // spring_damper " << m_.body_name(f.body1) << " - " << m_.body_name(f.body2) << "\n"

@@ -4,6 +4,8 @@
 // `planar` whose types (Rows, BodyVectors, Kinematics, ...) and functions
 // shadow the spatial ones. The spatial ones stay for initial_state(),
 // energy(), constraint_violation(), reactions() and outputs().
+#include <algorithm>
+
 #include "emitter.hpp"
 
 namespace mbrt::codegen {
@@ -30,10 +32,12 @@ void Emitter::planar_stages(std::ostringstream& o) const {
 }
 
 void Emitter::planar_constants(std::ostringstream& o) const {
-  // A body turning about z, a principal axis, has no gyroscopic torque, and
-  // planar scenes have no other velocity-dependent load: one implicit stage.
+  // A body turning about z, a principal axis, has no gyroscopic torque:
+  // without dampers one implicit stage.
+  const bool damped = std::any_of(m_.forces.begin(), m_.forces.end(),
+                                  [](const Force& f) { return f.type == ForceType::spring_damper && f.damping != 0.0; });
   o << "constexpr int kPlanarRows = " << a_.constraint_rows << ";  // of kConstraintRows\n"
-    << "constexpr int kStages = " << (a_.specialize.single_stage ? 1 : 2) << ";  // implicit stages per step\n";
+    << "constexpr int kStages = " << (a_.specialize.single_stage && !damped ? 1 : 2) << ";  // implicit stages per step\n";
   if (a_.gravity && !folded_weights()) {
     const Eigen::Vector3d g = m_.gravity.value_or(Eigen::Vector3d::Zero());
     o << "const mbrt::Vec2 kGravity(" << num(g.x()) << ", " << num(g.y()) << ");\n";
@@ -107,6 +111,30 @@ void explicit_stage(State& s) noexcept {
 }
 
 )";
+}
+
+// Loads of loads_stage in the plane: torques about z, forces and springs
+// whose points lie in their bodies' planes (codegen/planar_scene.cpp).
+void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std::string& n) const {
+  switch (f.type) {
+    case ForceType::spring_damper:
+      o << "  {  // spring_damper " << m_.body_name(f.body1) << " - " << m_.body_name(f.body2) << "\n"
+        << "    const mbrt::PlanarSpringDamperForce e = mbrt::planar_spring_damper(" << n << ", " << motion(f.body1)
+        << ", " << motion(f.body2) << ");\n";
+      if (f.body2 != kGround) o << "    mbrt::add_point_force(l.w[" << f.body2 << "], " << pose(f.body2) << ", " << n << ".s2, e.f2);\n";
+      if (f.body1 != kGround) o << "    mbrt::add_point_force(l.w[" << f.body1 << "], " << pose(f.body1) << ", " << n << ".s1, -e.f2);\n";
+      o << "    l.elastic_energy += e.energy;\n  }\n";
+      break;
+    case ForceType::torque:
+      o << "  // torque about z on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1) << "\n";
+      if (f.body2 != kGround) o << "  l.w[" << f.body2 << "].tau += " << n << ".value * " << n << ".axis1.z();\n";
+      if (f.body1 != kGround) o << "  l.w[" << f.body1 << "].tau -= " << n << ".value * " << n << ".axis1.z();\n";
+      break;
+    case ForceType::force:
+      o << "  mbrt::add_point_force(l.w[" << f.body << "], " << pose(f.body) << ", " << n << "_point, mbrt::Vec2("
+        << n << "_vector.head<2>()));  // force on " << m_.body_name(f.body) << "\n";
+      break;
+  }
 }
 
 // Each planar block's rows are the first rows of its spatial block; the

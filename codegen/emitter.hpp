@@ -162,6 +162,7 @@ class Emitter {
   void planar_constants(std::ostringstream& o) const;
   void planar_velocity_helpers(std::ostringstream& o) const;
   void planar_explicit_stage(std::ostringstream& o) const;
+  void planar_force_load(std::ostringstream& o, const Force& f, const std::string& n) const;
   void store_multipliers(std::ostringstream& o) const;
 
   // emit_nps.cpp: the tree elimination (a_.tree) and the cut rows.

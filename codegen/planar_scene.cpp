@@ -48,11 +48,32 @@ std::string planar_joint(const Model& model, const Joint& j, ConstraintBlock& bl
   }
 }
 
+// Loads in the plane, acting in their bodies' planes of motion.
+std::string force_refusal(const Force& f, const ForcePlan& p) {
+  switch (f.type) {
+    case ForceType::spring_damper:
+      if (f.point1.z() != f.point2.z() || (f.body1 != kGround && p.spring.s1.z() != 0.0) ||
+          (f.body2 != kGround && p.spring.s2.z() != 0.0)) {
+        return "a spring_damper is off the plane of a body's centre of mass";
+      }
+      return "";
+    case ForceType::torque: return along_z(f.axis) ? "" : "a torque is not about z";
+    case ForceType::force: return in_plane(f.vector) && p.point.z() == 0.0 ? "" : "a force is out of its body's plane";
+  }
+  return "";
+}
+
 std::string refusal(const Model& model, const Analysis& a, PlanarPlan& plan) {
   if (model.solver.scheme != "staggered-pcst") return "not for scheme " + model.solver.scheme;
   if (!model.drivers.empty()) return "the scene has drivers";
-  if (!model.forces.empty()) return "the scene has force elements";
-  if (!model.inputs.empty()) return "the scene has inputs";
+  for (const ForcePlan& p : a.forces) {
+    if (std::string why = force_refusal(model.forces[static_cast<size_t>(p.model_index)], p); !why.empty()) return why;
+  }
+  for (size_t i = 0; i < model.inputs.size(); ++i) {
+    const Input& in = model.inputs[i];
+    if (in.type == InputType::joint_force) return "input " + in.name + " is a joint_force";
+    if (!along_z(a.inputs[i].axis1)) return "input " + in.name + " is not a torque about z";
+  }
   if (model.gravity && !in_plane(*model.gravity)) return "gravity is not in the x-y plane";
   for (const Body& b : model.bodies) {
     if (std::string why = body_refusal(b); !why.empty()) return why;

@@ -24,6 +24,8 @@
 #include "four_bar_planar.hpp"
 #include "four_bar_spatial.hpp"
 #include "four_bar_special.hpp"
+#include "loaded_four_bar_planar.hpp"
+#include "loaded_four_bar_spatial.hpp"
 #include "two_masses_general.hpp"
 #include "two_masses_special.hpp"
 
@@ -122,6 +124,12 @@ TEST_CASE("planar coordinates: the A01 pendulum, the four-bar and a 10-link chai
   CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(a01) < kMultiplierRoundOff);
   CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(four_bar) < kMultiplierRoundOff);
   CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(chain_10) < kMultiplierRoundOff);
+}
+
+TEST_CASE("planar coordinates: a four-bar under a damped spring, torques, a point force and an input equals the spatial code") {
+  CHECK(applies("loaded_four_bar.yaml", {"planar"}));
+  CHECK(DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kMultiplierRoundOff);
 }
 
 TEST_CASE("planar coordinates: the four-bar keeps 8 of its 20 rows; --no-specialize=planar keeps all") {

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "mbrt/body_state.hpp"
+#include "mbrt/forces.hpp"
 #include "mbrt/joints.hpp"
 
 namespace mbrt {
@@ -142,6 +143,35 @@ inline PlanarPoint planar_point(const PlanarMotion& m, const Vec3& s) noexcept {
   p.J << 1.0, 0.0, r_perp.x(), 0.0, 1.0, r_perp.y();
   p.quad = -(m.vel.w * m.vel.w) * r_s;
   return p;
+}
+
+// add_point_force of forces.hpp in the plane: f (world) at body point s
+// adds its moment about z.
+inline void add_point_force(PlanarWrench& w, const PlanarPose& pose, const Vec3& s, const Vec2& f) noexcept {
+  const Vec2 f_body = pose.R.transpose() * f;
+  w.f += f;
+  w.tau += s.x() * f_body.y() - s.y() * f_body.x();
+}
+
+struct PlanarSpringDamperForce {
+  Vec2 f2;        // force on body 2 at its point (body 1 gets -f2), world
+  double energy;  // stored elastic energy
+};
+
+// spring_damper of forces.hpp with both points in one plane z = const.
+inline PlanarSpringDamperForce planar_spring_damper(const SpringDamper& e, const PlanarMotion& m1,
+                                                    const PlanarMotion& m2) noexcept {
+  const PlanarPoint p1 = planar_point(m1, e.s1), p2 = planar_point(m2, e.s2);
+  const Vec2 d = p2.x - p1.x;
+  const double l = d.norm();
+  const double stretch = l - e.rest_length;
+  PlanarSpringDamperForce out{Vec2::Zero(), 0.5 * e.stiffness * stretch * stretch};
+  if (l > 1e-12) {  // coincident points have no line of action
+    const Vec2 n = d / l;
+    const double tension = e.stiffness * stretch + e.damping * n.dot(p2.x_dot - p1.x_dot);
+    out.f2 = -tension * n;
+  }
+  return out;
 }
 
 // Revolute about z (and spherical, whose other rotations the scene leaves at
