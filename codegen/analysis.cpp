@@ -7,6 +7,7 @@
 #include <amd.h>
 
 #include "constraint_evaluation.hpp"
+#include "planar_scene.hpp"
 
 namespace mbrt::codegen {
 
@@ -281,6 +282,11 @@ std::vector<Skipped> skipped_code(const Model& model, const Analysis& a) {
     out.push_back({"sparse_factor", std::to_string(n * (n - 1) / 2 - formed) + " of " + std::to_string(n * (n - 1) / 2) +
                                         " off-diagonal blocks of S's factor: zero, never formed"});
   }
+  if (a.planar.applies) {
+    out.push_back({"planar", "motion in the x-y plane: x, y and angle per body, " +
+                                 std::to_string(a.planar.constraint_rows) + " of " + std::to_string(a.constraint_rows) +
+                                 " constraint rows (the in-plane ones)"});
+  }
   return out;
 }
 
@@ -406,6 +412,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   if (model.solver.scheme == "ali3p") a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
   if (model.solver.scheme == "staggered-nps") a.tree = plan_tree(model, a.constraints);
 
+  a.planar = plan_planar(model, a);
   a.skipped = skipped_code(model, a);
   return a;
 }

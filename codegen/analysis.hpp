@@ -73,6 +73,16 @@ struct Ali3pPlan {
   std::vector<double> alpha;  // per constraint block
 };
 
+// The planar specialization (codegen/planar_scene.cpp): whether the scene
+// moves in the world x-y plane, and each constraint block's in-plane rows,
+// which are the block's first rows in the spatial code.
+struct PlanarPlan {
+  bool applies = false;
+  std::string refusal;                       // why not, when it does not apply
+  std::vector<ConstraintBlock> constraints;  // same order as Analysis::constraints, planar kernels and rows
+  int constraint_rows = 0;
+};
+
 struct Analysis {
   std::vector<BodyPlan> bodies;  // same order as Model::bodies
   int rigid_count = 0;
@@ -92,6 +102,7 @@ struct Analysis {
   double baumgarte_beta = 0.0;             // baumgarte, 1/s
   Ali3pPlan ali3p;                         // ali3p only
   TreePlan tree;                           // staggered-nps only
+  PlanarPlan planar;
   Specializations specialize;              // which ones the emitter may make
   std::vector<Skipped> skipped;            // the ones that applied, for the source's comment and reports
 };

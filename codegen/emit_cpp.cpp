@@ -175,14 +175,15 @@ void Emitter::constants(std::ostringstream& o) const {
 }
 
 void Emitter::workspace_types(std::ostringstream& o) const {
-  o << "using Rows = Eigen::Matrix<double, kConstraintRows, 1>;\n"
-    << "using BodyVectors = std::array<mbrt::Vec6, kBodies>;  // [v; w_body] per body\n\n"
+  o << "using Rows = Eigen::Matrix<double, " << (planar_ ? "kPlanarRows" : "kConstraintRows") << ", 1>;\n"
+    << "using BodyVectors = std::array<mbrt::" << (planar_ ? "Vec3, kBodies>;  // [vx; vy; omega_z]" : "Vec6, kBodies>;  // [v; w_body]")
+    << " per body\n\n"
     << "struct Kinematics {\n"
-    << "  std::array<mbrt::BodyPose, kBodies> pose;\n"
-    << "  std::array<mbrt::BodyVelocity, kBodies> vel;\n"
+    << "  std::array<mbrt::" << type("BodyPose") << ", kBodies> pose;\n"
+    << "  std::array<mbrt::" << type("BodyVelocity") << ", kBodies> vel;\n"
     << "};\n\n"
     << "struct Loads {\n"
-    << "  std::array<mbrt::Wrench, kBodies> w;\n"
+    << "  std::array<mbrt::" << type("Wrench") << ", kBodies> w;\n"
     << "  double elastic_energy;\n"
     << "};\n\n"
     << (scheme_kind() == Scheme::nps ? "// Constraint rows.\n"
@@ -190,12 +191,12 @@ void Emitter::workspace_types(std::ostringstream& o) const {
                                        "// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.\n")
     << "struct ConstraintSystem {\n";
   for (int ji = 0; ji < blocks(); ++ji) {
-    o << "  mbrt::ConstraintRows<" << rows(ji) << "> rows_" << jname(ji) << ";  // " << block(ji).kernel << " "
+    o << "  mbrt::" << type("ConstraintRows") << "<" << rows(ji) << "> rows_" << jname(ji) << ";  // " << block(ji).kernel << " "
       << m_.body_name(block(ji).body1) << " - " << m_.body_name(block(ji).body2) << ", rows " << first_row(ji)
       << ".." << first_row(ji) + rows(ji) - 1 << "\n";
     if (scheme_kind() == Scheme::nps) continue;
     for (int b : moving_bodies(ji)) {
-      o << "  " << block_type(6, rows(ji)) << " mbt_" << ji << "_" << b << ";  // M^-1 B^T: " << jname(ji) << ", "
+      o << "  " << block_type(body_dofs(), rows(ji)) << " mbt_" << ji << "_" << b << ";  // M^-1 B^T: " << jname(ji) << ", "
         << body(b).name << "\n";
     }
   }
@@ -211,29 +212,36 @@ void Emitter::workspace_types(std::ostringstream& o) const {
 }
 
 void Emitter::velocity_helpers(std::ostringstream& o) const {
-  o << "std::array<mbrt::BodyVelocity, kBodies> velocities_of(const State& s) noexcept {\n"
-    << "  std::array<mbrt::BodyVelocity, kBodies> vel;\n";
+  const std::string velocity_type = "std::array<mbrt::" + type("BodyVelocity") + ", kBodies>";
+  o << velocity_type << " velocities_of(const State& s) noexcept {\n  " << velocity_type << " vel;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  vel[" << i << "] = mbrt::velocity_of(" << state_of(static_cast<int>(i)) << ");\n";
+    o << "  vel[" << i << "] = mbrt::" << (planar_ ? "planar_" : "") << "velocity_of(" << state_of(static_cast<int>(i))
+      << ");\n";
   }
-  o << "  return vel;\n}\n\n"
-    << "// (s) => (u): generalized velocities [v; w_body] per body.\n"
+  o << "  return vel;\n}\n\n";
+  if (planar_) {
+    planar_velocity_helpers(o);
+    return;
+  }
+  o << "// (s) => (u): generalized velocities [v; w_body] per body.\n"
     << "BodyVectors generalized_velocities(const State& s) noexcept {\n  BodyVectors u;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const std::string st = state_of(static_cast<int>(i));
     if (a_.bodies[i].rigid) o << "  u[" << i << "] << " << st << ".v, " << st << ".w;\n";
     else o << "  u[" << i << "] << " << st << ".v, mbrt::Vec3::Zero();\n";
   }
-  o << "  return u;\n}\n\n"
-    << "// (u) => (s): write generalized velocities back.\n"
-    << "void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    const std::string st = state_of(static_cast<int>(i));
-    o << "  " << st << ".v = u[" << i << "].head<3>();\n";
-    if (a_.bodies[i].rigid) o << "  " << st << ".w = u[" << i << "].tail<3>();\n";
+  o << "  return u;\n}\n\n";
+  if (emits_step()) {
+    o << "// (u) => (s): write generalized velocities back.\n"
+      << "void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
+    for (size_t i = 0; i < m_.bodies.size(); ++i) {
+      const std::string st = state_of(static_cast<int>(i));
+      o << "  " << st << ".v = u[" << i << "].head<3>();\n";
+      if (a_.bodies[i].rigid) o << "  " << st << ".w = u[" << i << "].tail<3>();\n";
+    }
+    o << "}\n\n";
   }
-  o << "}\n\n"
-    << "// (a) => (s): accelerations kept for the next step.\n"
+  o << "// (a) => (s): accelerations kept for the next step.\n"
     << "void set_accelerations(const BodyVectors& a, State& s) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const BodyPlan& p = a_.bodies[i];
@@ -261,12 +269,12 @@ void Emitter::loads_stage(std::ostringstream& o) const {
   o << "// (k" << (has_inputs() ? ", u" : "") << ") => (l): applied forces (world) and torques (body axes) per body,\n"
     << "// gyroscopic torques" << (has_inputs() ? " and inputs" : "") << " included, and the elastic energy stored.\n"
     << "void applied_loads(const Kinematics& k, " << (has_inputs() ? "const Inputs& u, " : "") << "Loads& l) noexcept {\n"
-    << "  l.w.fill(mbrt::Wrench{});\n  l.elastic_energy = 0.0;\n";
+    << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const BodyPlan& p = a_.bodies[i];
     if (folded_weights()) o << "  l.w[" << i << "].f += " << weight_of(static_cast<int>(i)) << ";\n";
     else if (a_.gravity) o << "  l.w[" << i << "].f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
-    if (p.rigid && !p.isotropic) {
+    if (p.rigid && !p.isotropic && !planar_) {  // planar: omega along z, a principal axis
       o << "  l.w[" << i << "].tau += mbrt::gyroscopic_torque(" << mass_of(static_cast<int>(i)) << ", k.vel[" << i
         << "].w);\n";
     }
@@ -274,6 +282,10 @@ void Emitter::loads_stage(std::ostringstream& o) const {
   for (size_t e = 0; e < a_.forces.size(); ++e) {
     const Force& f = m_.forces[static_cast<size_t>(a_.forces[e].model_index)];
     const std::string n = "force_" + std::to_string(e);
+    if (planar_) {
+      planar_force_load(o, f, n);
+      continue;
+    }
     switch (f.type) {
       case ForceType::spring_damper:
         o << "  {  // spring_damper " << m_.body_name(f.body1) << " - " << m_.body_name(f.body2) << "\n"
@@ -537,6 +549,16 @@ double quaternion_norm_error(const State& s) noexcept {
 )";
 }
 
+void Emitter::kinematics_function(std::ostringstream& o) const {
+  o << "// (s) => (k): pose and velocity of every body.\n"
+    << "void kinematics(const State& s, Kinematics& k) noexcept {\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    o << "  k.pose[" << i << "] = mbrt::" << (planar_ ? "planar_" : "") << "pose_of(" << state_of(static_cast<int>(i))
+      << ");  // " << m_.bodies[i].name << "\n";
+  }
+  o << "  k.vel = velocities_of(s);\n}\n\n";
+}
+
 std::string Emitter::source() const {
   std::ostringstream o;
   o << "// mbrt generated model '" << m_.name << "': " << m_.bodies.size() << " bodies (" << a_.rigid_count
@@ -554,23 +576,21 @@ std::string Emitter::source() const {
   o << "// Left out for this scene:";
   for (const Skipped& s : a_.skipped) o << "\n//   " << s.specialization << ": " << s.removed;
   if (a_.skipped.empty()) o << " nothing";
+  if (!a_.planar.refusal.empty()) o << "\n// Kept: spatial coordinates, since " << a_.planar.refusal << ".";
   o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n#include <mbrt/natural_partitioning.hpp>\n#include <mbrt/reactions.hpp>\n#include <mbrt/runtime.hpp>\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";
   constants(o);
   workspace_types(o);
   velocity_helpers(o);
-  o << "// (s) => (k): pose and velocity of every body.\n"
-    << "void kinematics(const State& s, Kinematics& k) noexcept {\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  k.pose[" << i << "] = mbrt::pose_of(" << state_of(static_cast<int>(i)) << ");  // "
-      << m_.bodies[i].name << "\n";
-  }
-  o << "  k.vel = velocities_of(s);\n}\n\n";
+  kinematics_function(o);
   loads_stage(o);
   constraint_stage(o);
   if (scheme_kind() != Scheme::nps) mass_products(o);
   if (scheme_kind() == Scheme::ali3p) {
     ali3p_stages(o);
+  } else if (a_.planar.applies) {
+    // The spatial multipliers serve initial_state(); the step is planar.
+    constraint_forces_function(o, stabilization_term());
   } else {
     staggered_stages(o);
   }
@@ -583,12 +603,14 @@ std::string Emitter::source() const {
   return ok;
 }
 
-}  // namespace
-
 )";
+  if (a_.planar.applies) planar_stages(o);
+  o << "}  // namespace\n\n";
   initial_state_function(o);
   if (scheme_kind() == Scheme::ali3p) {
     ali3p_step(o);
+  } else if (a_.planar.applies) {
+    o << "mbrt::StepStatus step(State& s) noexcept { return planar::step(s); }\n\n";
   } else {
     staggered_step(o);
   }
@@ -620,11 +642,14 @@ void Emitter::reactions_function(std::ostringstream& o) const {
 }
 
 void Emitter::constraint_forces_function(std::ostringstream& o, const std::string& stabilization) const {
+  // Planar multipliers go to their rows of the spatial s.lambda at the end.
+  const std::string lambda = planar_ ? "lambda" : "s.lambda";
   o << "void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {\n"
     << (stabilization.empty() ? "  (void)phi;\n" : "") << "  BodyVectors a = free_accelerations(l);\n"
-    << "  s.lambda = jacobian_times(c, a) + stacked_quad(c)"
-    << (stabilization.empty() ? "" : " +\n             " + stabilization)
-    << ";\n  solve(c, s.lambda);\n  subtract_constraint_forces(c, s.lambda, 1.0, a);\n  set_accelerations(a, s);\n}\n\n";
+    << "  " << (planar_ ? "Rows " : "") << lambda << " = jacobian_times(c, a) + stacked_quad(c)"
+    << (stabilization.empty() ? "" : " +\n             " + stabilization) << ";\n  solve(c, " << lambda
+    << ");\n  subtract_constraint_forces(c, " << lambda << ", 1.0, a);\n  set_accelerations(a, s);\n"
+    << (planar_ ? "  store_multipliers(lambda, s);\n" : "") << "}\n\n";
 }
 
 GeneratedCode emit_cpp(const Model& model, const Analysis& analysis) { return Emitter(model, analysis).run(); }

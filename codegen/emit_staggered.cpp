@@ -43,7 +43,8 @@ void explicit_stage(State& s) noexcept {
 }
 
 void Emitter::staggered_stages(std::ostringstream& o) const {
-  explicit_stage_function(o);
+  if (planar_) planar_explicit_stage(o);
+  else explicit_stage_function(o);
   if (scheme_kind() == Scheme::nps) {
     nps_stages(o);
     return;

@@ -1,7 +1,8 @@
 // The C++ emitter's shared state and the pieces every scheme uses. The
 // definitions are split by concept: emit_cpp.cpp (model data, kinematics,
 // loads, constraint system, diagnostics), emit_staggered.cpp (staggered-pcst,
-// baumgarte, blajer), emit_nps.cpp (staggered-nps), emit_ali3p.cpp (ali3p).
+// baumgarte, blajer), emit_nps.cpp (staggered-nps), emit_ali3p.cpp (ali3p),
+// emit_planar.cpp (staggered-pcst's step in planar coordinates).
 #pragma once
 
 #include <iomanip>
@@ -49,8 +50,25 @@ class Emitter {
   GeneratedCode run();
 
  private:
+  // The emitter of the planar step: a_ holds the planar constraint blocks.
+  Emitter(const Model& m, const Analysis& a, bool planar) : m_(m), a_(a), planar_(planar) {}
+
   const Model& m_;
   const Analysis& a_;
+  const bool planar_ = false;  // emitting the planar step's stages (emit_planar.cpp)
+
+  // The runtime type of the coordinates emitted: spatial, or its planar counterpart.
+  std::string type(const std::string& spatial) const {
+    if (!planar_) return spatial;
+    if (spatial == "ConstraintRows") return "PlanarRows";
+    if (spatial == "BodyPose") return "PlanarPose";
+    if (spatial == "BodyVelocity") return "PlanarVelocity";
+    if (spatial == "BodyMotion") return "PlanarMotion";
+    return "Planar" + spatial;  // Wrench
+  }
+  int body_dofs() const { return planar_ ? 3 : 6; }
+  // Whether this emitter writes the step's stages (the spatial one does not when the step is planar).
+  bool emits_step() const { return planar_ || !a_.planar.applies; }
 
   // Implicit passes per step: two when the end-of-step accelerations depend on
   // the end-of-step velocities (gyroscopic or damping loads, Baumgarte's
@@ -75,9 +93,9 @@ class Emitter {
   }
   std::string mass_of(int i) const { return body(i).name + "_mass"; }
   std::string motion(int i) const {
-    if (i == kGround) return "mbrt::BodyMotion{kGroundPose, kGroundVelocity}";
+    if (i == kGround) return "mbrt::" + type("BodyMotion") + "{kGroundPose, kGroundVelocity}";
     const std::string n = std::to_string(i);
-    return "mbrt::BodyMotion{k.pose[" + n + "], k.vel[" + n + "]}";
+    return "mbrt::" + type("BodyMotion") + "{k.pose[" + n + "], k.vel[" + n + "]}";
   }
   std::string pose(int i) const { return i == kGround ? "kGroundPose" : "k.pose[" + std::to_string(i) + "]"; }
   // Name of the M^-1 B^T block of joint j for body b.
@@ -96,6 +114,7 @@ class Emitter {
   void constants(std::ostringstream& o) const;
   void workspace_types(std::ostringstream& o) const;
   void velocity_helpers(std::ostringstream& o) const;
+  void kinematics_function(std::ostringstream& o) const;
   void loads_stage(std::ostringstream& o) const;
   void constraint_stage(std::ostringstream& o) const;
   void factorization(std::ostringstream& o) const;  // factorize(c) and solve(c, x) over the pattern of S
@@ -139,6 +158,14 @@ class Emitter {
   void explicit_stage_function(std::ostringstream& o) const;
   void staggered_stages(std::ostringstream& o) const;
   void staggered_step(std::ostringstream& o) const;
+
+  // emit_planar.cpp: namespace planar { ... step(s) } from a planar emitter.
+  void planar_stages(std::ostringstream& o) const;
+  void planar_constants(std::ostringstream& o) const;
+  void planar_velocity_helpers(std::ostringstream& o) const;
+  void planar_explicit_stage(std::ostringstream& o) const;
+  void planar_force_load(std::ostringstream& o, const Force& f, const std::string& n) const;
+  void store_multipliers(std::ostringstream& o) const;
 
   // emit_nps.cpp: the tree elimination (a_.tree) and the cut rows.
   bool nps_cuts() const { return a_.tree.cut_rows > 0; }

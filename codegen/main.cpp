@@ -32,7 +32,7 @@ outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.h
 --no-specialize generates the general step, without the specializations the
 scene would allow; --no-specialize=NAME,... turns off only those named
 (principal_axes, isotropic, single_stage, gravity_free, folded_weights,
-unloaded_bodies, no_drivers, sparse_factor). gen --report prints, as JSON,
+unloaded_bodies, no_drivers, sparse_factor, planar). gen --report prints, as JSON,
 the specializations that applied, the step's floating-point operations and
 instructions, its code size and predicted time (docs/specializations.md).
 sim generates, compiles (cached by content hash under $MBRT_CACHE_DIR or

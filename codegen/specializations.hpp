@@ -19,8 +19,9 @@ struct Specializations {
   bool unloaded_bodies = true;  // bodies without applied loads: M^-1 F is zero, not computed
   bool no_drivers = true;       // no drivers: no explicit time terms phi_t
   bool sparse_factor = true;    // Cholesky factor over S's block pattern (else every block)
+  bool planar = true;           // motion in the x-y plane: x, y and angle per body, in-plane rows only
 
-  static Specializations none() { return {false, false, false, false, false, false, false, false}; }
+  static Specializations none() { return {false, false, false, false, false, false, false, false, false}; }
 };
 
 // Each flag by the name --no-specialize=NAME and the reports use.
@@ -29,12 +30,19 @@ inline constexpr std::pair<const char*, bool Specializations::*> kSpecialization
     {"single_stage", &Specializations::single_stage},     {"gravity_free", &Specializations::gravity_free},
     {"folded_weights", &Specializations::folded_weights}, {"unloaded_bodies", &Specializations::unloaded_bodies},
     {"no_drivers", &Specializations::no_drivers},         {"sparse_factor", &Specializations::sparse_factor},
+    {"planar", &Specializations::planar},
 };
 
 // One specialization that applied to a model, and the code it left out.
 struct Skipped {
   std::string specialization;  // the flag's name above
   std::string removed;
+};
+
+// One specialization turned on that the scene did not allow, and why.
+struct NotApplied {
+  std::string specialization;
+  std::string reason;
 };
 
 }  // namespace mbrt::codegen

@@ -54,6 +54,7 @@ StepReport report_step(const Generated& g, const SimOptions& options) {
     if (!(options.generate.specialize.*flag)) r.turned_off.push_back(name);
   }
   r.skipped = g.analysis.skipped;
+  if (!g.analysis.planar.refusal.empty()) r.not_applied.push_back({"planar", g.analysis.planar.refusal});
   r.source_bytes = g.code.header.size() + g.code.source.size();
   const std::string executable = build_program(Program::sim, g, options);
   r.executable_bytes = fs::file_size(executable);
@@ -72,7 +73,12 @@ std::string report_json(const StepReport& r) {
     o << (i ? "," : "") << "\n    {\"specialization\": " << json_string(r.skipped[i].specialization)
       << ", \"removed\": " << json_string(r.skipped[i].removed) << "}";
   }
-  o << (r.skipped.empty() ? "" : "\n  ") << "],\n  \"source_bytes\": " << r.source_bytes
+  o << (r.skipped.empty() ? "" : "\n  ") << "],\n  \"not_applied\": [";
+  for (size_t i = 0; i < r.not_applied.size(); ++i) {
+    o << (i ? "," : "") << "\n    {\"specialization\": " << json_string(r.not_applied[i].specialization)
+      << ", \"reason\": " << json_string(r.not_applied[i].reason) << "}";
+  }
+  o << (r.not_applied.empty() ? "" : "\n  ") << "],\n  \"source_bytes\": " << r.source_bytes
     << ",\n  \"executable_bytes\": " << r.executable_bytes << ",\n  \"flops_per_step\": " << r.per_step.flops
     << ",\n  \"instructions_per_step\": " << r.per_step.instructions << ",\n  \"ns_per_flop\": ";
   if (r.ns_per_flop) o << *r.ns_per_flop; else o << "null";

@@ -19,6 +19,7 @@ struct StepReport {
   std::string scheme;
   std::vector<std::string> turned_off;  // specializations --no-specialize turned off
   std::vector<Skipped> skipped;
+  std::vector<NotApplied> not_applied;
   size_t source_bytes = 0;          // generated <name>.hpp and <name>.cpp
   size_t executable_bytes = 0;      // the compiled sim program (model, driver and runtime)
   StepCount per_step;

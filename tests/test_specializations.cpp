@@ -10,14 +10,22 @@
 #include <string>
 
 #include "a01_general.hpp"
+#include "a01_planar.hpp"
+#include "a01_spatial.hpp"
 #include "a01_special.hpp"
 #include "analysis.hpp"
+#include "chain_10_planar.hpp"
+#include "chain_10_spatial.hpp"
 #include "driven_slider_general.hpp"
 #include "driven_slider_special.hpp"
 #include "four_bar_ali3p_general.hpp"
 #include "four_bar_ali3p_special.hpp"
 #include "four_bar_general.hpp"
+#include "four_bar_planar.hpp"
+#include "four_bar_spatial.hpp"
 #include "four_bar_special.hpp"
+#include "loaded_four_bar_planar.hpp"
+#include "loaded_four_bar_spatial.hpp"
 #include "two_masses_general.hpp"
 #include "two_masses_special.hpp"
 
@@ -54,9 +62,10 @@ double max_difference(A a, B b, StepA step_a, StepB step_b, int steps) {
 constexpr int kSteps = 2000;
 constexpr double kRoundOff = 1e-10;  // m, m/s, rad/s: states are of order 1
 
-// Whether every specialization named applies to the model file.
+// Whether every specialization named applies to the model file (in tests/models, or a path).
 bool applies(const std::string& model, std::initializer_list<const char*> names) {
-  const mbrt::codegen::Analysis a = mbrt::codegen::analyse(mbrt::codegen::load_model(std::string(MBRT_TEST_MODELS) + "/" + model));
+  const std::string file = model.find('/') == std::string::npos ? std::string(MBRT_TEST_MODELS) + "/" + model : model;
+  const mbrt::codegen::Analysis a = mbrt::codegen::analyse(mbrt::codegen::load_model(file));
   return std::all_of(names.begin(), names.end(), [&](const char* name) {
     return std::any_of(a.skipped.begin(), a.skipped.end(),
                        [&](const mbrt::codegen::Skipped& s) { return s.specialization == name; });
@@ -79,6 +88,74 @@ TEST_CASE("principal axes and the sparse factor: the four-bar equals the general
   CHECK(applies("four_bar.yaml", {"principal_axes", "sparse_factor"}));
   CHECK(DIFFERENCE_FROM_GENERAL(four_bar) < kRoundOff);
   CHECK(DIFFERENCE_FROM_GENERAL(four_bar_ali3p) < kRoundOff);
+}
+
+// Largest difference between the models <tag>_planar and <tag>_spatial
+// (--no-specialize=planar), of the states and of the multipliers.
+#define DIFFERENCE_FROM_SPATIAL(tag)                                                                         \
+  max_difference(mbrt::models::tag##_planar::initial_state(), mbrt::models::tag##_spatial::initial_state(), \
+                 mbrt::models::tag##_planar::step, mbrt::models::tag##_spatial::step, kSteps)
+
+template <class A, class B, class StepA, class StepB>
+double multiplier_difference(A a, B b, StepA step_a, StepB step_b) {
+  double d = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    REQUIRE(step_a(a) == mbrt::StepStatus::ok);
+    REQUIRE(step_b(b) == mbrt::StepStatus::ok);
+    d = std::max(d, (a.lambda - b.lambda).cwiseAbs().maxCoeff());
+  }
+  return d;
+}
+
+#define MULTIPLIER_DIFFERENCE_FROM_SPATIAL(tag)                                                            \
+  multiplier_difference(mbrt::models::tag##_planar::initial_state(), mbrt::models::tag##_spatial::initial_state(), \
+                        mbrt::models::tag##_planar::step, mbrt::models::tag##_spatial::step)
+
+constexpr double kMultiplierRoundOff = 1e-8;  // N: the multipliers are of order 10
+
+TEST_CASE("planar coordinates: the A01 pendulum, the four-bar and a 10-link chain equal the spatial code") {
+  CHECK(applies("a01_pendulum.yaml", {"planar"}));
+  CHECK(applies("four_bar.yaml", {"planar"}));
+  CHECK(applies(std::string(MBRT_TIMING_MODELS) + "/chain_10.yaml", {"planar"}));
+  CHECK(DIFFERENCE_FROM_SPATIAL(a01) < kRoundOff);
+  CHECK(DIFFERENCE_FROM_SPATIAL(four_bar) < kRoundOff);
+  CHECK(DIFFERENCE_FROM_SPATIAL(chain_10) < kRoundOff);
+  // The in-plane multipliers land on their spatial rows; the others are zero in both.
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(a01) < kMultiplierRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(four_bar) < kMultiplierRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(chain_10) < kMultiplierRoundOff);
+}
+
+TEST_CASE("planar coordinates: a four-bar under a damped spring, torques, a point force and an input equals the spatial code") {
+  CHECK(applies("loaded_four_bar.yaml", {"planar"}));
+  CHECK(DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kMultiplierRoundOff);
+}
+
+TEST_CASE("planar coordinates: the four-bar keeps 8 of its 20 rows; --no-specialize=planar keeps all") {
+  using namespace mbrt::codegen;
+  const Model four_bar = load_model(std::string(MBRT_TEST_MODELS) + "/four_bar.yaml");
+  const Analysis a = analyse(four_bar);
+  CHECK(a.planar.applies);
+  CHECK(a.planar.constraint_rows == 8);
+  CHECK(a.constraint_rows == 20);
+  Specializations no_planar;
+  no_planar.planar = false;
+  const Analysis b = analyse(four_bar, no_planar);
+  CHECK_FALSE(b.planar.applies);
+  CHECK(std::none_of(b.skipped.begin(), b.skipped.end(), [](const Skipped& s) { return s.specialization == "planar"; }));
+}
+
+TEST_CASE("planar coordinates do not apply to the heavy top, nor to the four-bar in another scheme") {
+  using namespace mbrt::codegen;
+  const Analysis top = analyse(load_model(std::string(MBRT_TEST_MODELS) + "/heavy_top.yaml"));
+  CHECK_FALSE(top.planar.applies);
+  CHECK_FALSE(top.planar.refusal.empty());
+  Model four_bar = load_model(std::string(MBRT_TEST_MODELS) + "/four_bar.yaml");
+  four_bar.solver.scheme = "ali3p";
+  const Analysis ali3p = analyse(four_bar);
+  CHECK_FALSE(ali3p.planar.applies);
+  CHECK(ali3p.planar.refusal == "not for scheme ali3p");
 }
 
 TEST_CASE("isotropic bodies: the driven slider equals the general code") {

@@ -81,3 +81,15 @@ TEST_CASE("the report lists what was left out and counts less for the specialize
   CHECK(number(one, "flops_per_step") < number(general, "flops_per_step"));
   CHECK(special.find("\"calibration\": ") != std::string::npos);
 }
+
+TEST_CASE("the report names the planar specialization where it applies and says why where it does not") {
+  const std::string pendulum = run("gen '" + std::string(MBRT_TEST_MODELS) + "/a01_pendulum.yaml' --report");
+  CHECK(pendulum.find("\"specialization\": \"planar\", \"removed\"") != std::string::npos);
+  CHECK(pendulum.find("\"not_applied\": []") != std::string::npos);
+  const std::string off = run("gen '" + std::string(MBRT_TEST_MODELS) + "/a01_pendulum.yaml' --report --no-specialize=planar");
+  CHECK(off.find("\"turned_off\": [\"planar\"]") != std::string::npos);
+  CHECK(off.find("\"specialization\": \"planar\"") == std::string::npos);
+  const std::string top = run("gen '" + std::string(MBRT_TEST_MODELS) + "/heavy_top.yaml' --report");
+  CHECK(top.find("{\"specialization\": \"planar\", \"reason\": \"gravity is not in the x-y plane\"}") !=
+        std::string::npos);
+}

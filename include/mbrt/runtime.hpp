@@ -10,6 +10,7 @@
 #include "mbrt/mass_properties.hpp"
 #include "mbrt/model_api.hpp"
 #include "mbrt/nonholonomic.hpp"
+#include "mbrt/planar.hpp"
 #include "mbrt/rotation.hpp"
 
 namespace mbrt {

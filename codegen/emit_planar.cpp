@@ -1,0 +1,154 @@
+// staggered-pcst's step in planar coordinates (docs/specializations.md,
+// "planar"): the same stages as emit_staggered.cpp, emitted by a second
+// Emitter whose constraint blocks are the in-plane rows, into a namespace
+// `planar` whose types (Rows, BodyVectors, Kinematics, ...) and functions
+// shadow the spatial ones. The spatial ones stay for initial_state(),
+// energy(), constraint_violation(), reactions() and outputs().
+#include <algorithm>
+
+#include "emitter.hpp"
+
+namespace mbrt::codegen {
+
+void Emitter::planar_stages(std::ostringstream& o) const {
+  Analysis planar = a_;
+  planar.constraints = a_.planar.constraints;
+  planar.constraint_rows = a_.planar.constraint_rows;
+  const Emitter e(m_, planar, true);
+  o << "// The step in planar coordinates: motion in the x-y plane, per body x, y and\n"
+    << "// the rotation about z, the in-plane constraint rows only.\n"
+    << "namespace planar {\n\n";
+  e.planar_constants(o);
+  e.workspace_types(o);
+  e.velocity_helpers(o);
+  e.kinematics_function(o);
+  e.loads_stage(o);
+  e.constraint_stage(o);
+  e.mass_products(o);
+  store_multipliers(o);
+  e.staggered_stages(o);
+  e.staggered_step(o);
+  o << "}  // namespace planar\n\n";
+}
+
+void Emitter::planar_constants(std::ostringstream& o) const {
+  // A body turning about z, a principal axis, has no gyroscopic torque:
+  // without dampers one implicit stage.
+  const bool damped = std::any_of(m_.forces.begin(), m_.forces.end(),
+                                  [](const Force& f) { return f.type == ForceType::spring_damper && f.damping != 0.0; });
+  o << "constexpr int kPlanarRows = " << a_.constraint_rows << ";  // of kConstraintRows\n"
+    << "constexpr int kStages = " << (a_.specialize.single_stage && !damped ? 1 : 2) << ";  // implicit stages per step\n";
+  if (a_.gravity && !folded_weights()) {
+    const Eigen::Vector3d g = m_.gravity.value_or(Eigen::Vector3d::Zero());
+    o << "const mbrt::Vec2 kGravity(" << num(g.x()) << ", " << num(g.y()) << ");\n";
+  }
+  o << "const mbrt::PlanarPose kGroundPose = mbrt::planar_ground_pose();\n"
+    << "const mbrt::PlanarVelocity kGroundVelocity = mbrt::planar_ground_velocity();\n\n"
+    << "// Masses and the moments of inertia about z (particles keep their PointMass).\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    const Body& b = m_.bodies[i];
+    if (a_.bodies[i].rigid) {
+      o << "const mbrt::PlanarInertia " << mass_of(static_cast<int>(i)) << "{" << num(b.mass) << ", "
+        << num(b.inertia(2, 2)) << "};\n";
+    }
+    if (folded_weights()) {
+      const Eigen::Vector3d w = b.mass * *m_.gravity;
+      o << "const mbrt::Vec2 " << weight_of(static_cast<int>(i)) << "(" << num(w.x()) << ", " << num(w.y()) << ");\n";
+    }
+  }
+  o << "\n";
+}
+
+void Emitter::planar_velocity_helpers(std::ostringstream& o) const {
+  o << "// (s) => (u): (vx, vy, omega_z) per body.\n"
+    << "BodyVectors generalized_velocities(const State& s) noexcept {\n  BodyVectors u;\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    o << "  u[" << i << "] = mbrt::planar_velocities(" << state_of(static_cast<int>(i)) << ");\n";
+  }
+  o << "  return u;\n}\n\n"
+    << "// (u) => (s): the in-plane velocities; the others stay zero.\n"
+    << "void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    o << "  mbrt::set_planar_velocities(u[" << i << "], " << state_of(static_cast<int>(i)) << ");\n";
+  }
+  o << "}\n\n";
+  const auto acceleration = [&](size_t i) {
+    const BodyPlan& p = a_.bodies[i];
+    return (p.rigid ? "s.rigid_acceleration[" : "s.particle_acceleration[") + std::to_string(p.slot) + "]";
+  };
+  o << "// (a) => (s): accelerations kept for the next step.\n"
+    << "void set_accelerations(const BodyVectors& a, State& s) noexcept {\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    o << "  mbrt::set_planar_accelerations(a[" << i << "], " << acceleration(i) << ");\n";
+  }
+  o << "}\n\n"
+    << "BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    o << "  a[" << i << "] = mbrt::planar_accelerations(" << acceleration(i) << ");\n";
+  }
+  o << "  return a;\n}\n\n";
+}
+
+void Emitter::planar_explicit_stage(std::ostringstream& o) const {
+  o << R"(// (s, accelerations at t) => (s): explicit stage, central difference in the
+// plane (docs/staggered-pcst.md, eqs. 1-3); the rotation about z by the
+// spatial step's Cayley updates.
+void explicit_stage(State& s) noexcept {
+  for (int b = 0; b < kRigidBodies; ++b) {
+    mbrt::RigidState& x = s.rigid[b];
+    const mbrt::RigidAcceleration& a = s.rigid_acceleration[b];
+    x.v.head<2>() += (0.5 * h) * a.a.head<2>();
+    x.w.z() += (0.5 * h) * a.alpha.z();
+    x.r.head<2>() += h * x.v.head<2>();
+    mbrt::advance_planar_rotation(x.p, x.w.z(), h, kEulerUpdates);
+  }
+  for (int b = 0; b < kParticles; ++b) {
+    mbrt::ParticleState& x = s.particle[b];
+    x.v.head<2>() += (0.5 * h) * s.particle_acceleration[b].head<2>();
+    x.r.head<2>() += h * x.v.head<2>();
+  }
+  s.t += h;
+}
+
+)";
+}
+
+// Loads of loads_stage in the plane: torques about z, forces and springs
+// whose points lie in their bodies' planes (codegen/planar_scene.cpp).
+void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std::string& n) const {
+  switch (f.type) {
+    case ForceType::spring_damper:
+      o << "  {  // spring_damper " << m_.body_name(f.body1) << " - " << m_.body_name(f.body2) << "\n"
+        << "    const mbrt::PlanarSpringDamperForce e = mbrt::planar_spring_damper(" << n << ", " << motion(f.body1)
+        << ", " << motion(f.body2) << ");\n";
+      if (f.body2 != kGround) o << "    mbrt::add_point_force(l.w[" << f.body2 << "], " << pose(f.body2) << ", " << n << ".s2, e.f2);\n";
+      if (f.body1 != kGround) o << "    mbrt::add_point_force(l.w[" << f.body1 << "], " << pose(f.body1) << ", " << n << ".s1, -e.f2);\n";
+      o << "    l.elastic_energy += e.energy;\n  }\n";
+      break;
+    case ForceType::torque:
+      o << "  // torque about z on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1) << "\n";
+      if (f.body2 != kGround) o << "  l.w[" << f.body2 << "].tau += " << n << ".value * " << n << ".axis1.z();\n";
+      if (f.body1 != kGround) o << "  l.w[" << f.body1 << "].tau -= " << n << ".value * " << n << ".axis1.z();\n";
+      break;
+    case ForceType::force:
+      o << "  mbrt::add_point_force(l.w[" << f.body << "], " << pose(f.body) << ", " << n << "_point, mbrt::Vec2("
+        << n << "_vector.head<2>()));  // force on " << m_.body_name(f.body) << "\n";
+      break;
+  }
+}
+
+// Each planar block's rows are the first rows of its spatial block; the
+// spatial block's other (out-of-plane) multipliers are zero in a planar scene.
+void Emitter::store_multipliers(std::ostringstream& o) const {
+  o << "// (lambda) => (s.lambda): the in-plane rows of every spatial block.\n"
+    << "void store_multipliers(const Rows& lambda, State& s) noexcept {\n";
+  if (blocks() == 0) o << "  (void)lambda;\n  (void)s;\n";
+  for (int j = 0; j < blocks(); ++j) {
+    const ConstraintBlock& p = a_.planar.constraints[static_cast<size_t>(j)];
+    o << "  s.lambda.segment<" << p.rows << ">(" << first_row(j) << ") = lambda.segment<" << p.rows << ">("
+      << p.first_row << ");  // " << jname(j) << "\n";
+  }
+  o << "}\n\n";
+}
+
+}  // namespace mbrt::codegen

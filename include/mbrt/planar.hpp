@@ -1,0 +1,198 @@
+// Planar coordinates for scenes that move in the world x-y plane
+// (docs/specializations.md, "planar"): per body x, y and the rotation about
+// z, velocities u = (vx, vy, omega_z), constraint rows of the in-plane
+// directions only. The step keeps the State's spatial fields and reads and
+// writes their in-plane components: a rotation about z has Euler parameters
+// (cos(theta/2), 0, 0, sin(theta/2)), and omega_z is the same in body and
+// world axes. Every formula is the spatial one with the out-of-plane
+// components zero, so both give the same trajectory to round-off.
+#pragma once
+
+#include <cmath>
+
+#include "mbrt/body_state.hpp"
+#include "mbrt/forces.hpp"
+#include "mbrt/joints.hpp"
+
+namespace mbrt {
+
+using Vec2 = Eigen::Matrix<double, 2, 1>;
+using Mat2 = Eigen::Matrix<double, 2, 2>;
+
+struct PlanarPose {
+  Vec2 r;
+  Mat2 R;
+};
+
+struct PlanarVelocity {
+  Vec2 v;
+  double w;
+};
+
+struct PlanarMotion {
+  const PlanarPose& pose;
+  const PlanarVelocity& vel;
+};
+
+struct PlanarWrench {
+  Vec2 f = Vec2::Zero();
+  double tau = 0.0;
+};
+
+// A rigid body's mass and its moment of inertia about the body z axis.
+struct PlanarInertia {
+  double m;
+  double J;
+};
+
+template <int N>
+struct PlanarRows {
+  Eigen::Matrix<double, N, 1> phi;
+  Eigen::Matrix<double, N, 3> J1;
+  Eigen::Matrix<double, N, 3> J2;
+  Eigen::Matrix<double, N, 1> quad;
+};
+
+// R(p) of rotation.hpp with e1 = e2 = 0, its upper-left 2 x 2 block.
+inline PlanarPose planar_pose_of(const RigidState& s) noexcept {
+  const double e0 = s.p[0], e3 = s.p[3];
+  PlanarPose pose{s.r.head<2>(), Mat2()};
+  pose.R << 1.0 - 2.0 * (e3 * e3), -2.0 * (e0 * e3), 2.0 * (e0 * e3), 1.0 - 2.0 * (e3 * e3);
+  return pose;
+}
+inline PlanarPose planar_pose_of(const ParticleState& s) noexcept { return {s.r.head<2>(), Mat2::Identity()}; }
+inline PlanarVelocity planar_velocity_of(const RigidState& s) noexcept { return {s.v.head<2>(), s.w.z()}; }
+inline PlanarVelocity planar_velocity_of(const ParticleState& s) noexcept { return {s.v.head<2>(), 0.0}; }
+inline PlanarPose planar_ground_pose() noexcept { return {Vec2::Zero(), Mat2::Identity()}; }
+inline PlanarVelocity planar_ground_velocity() noexcept { return {Vec2::Zero(), 0.0}; }
+
+// u = (vx, vy, omega_z) of a body, read from and written to the State.
+inline Vec3 planar_velocities(const RigidState& s) noexcept { return {s.v.x(), s.v.y(), s.w.z()}; }
+inline Vec3 planar_velocities(const ParticleState& s) noexcept { return {s.v.x(), s.v.y(), 0.0}; }
+inline void set_planar_velocities(const Vec3& u, RigidState& s) noexcept {
+  s.v.head<2>() = u.head<2>();
+  s.w.z() = u.z();
+}
+inline void set_planar_velocities(const Vec3& u, ParticleState& s) noexcept { s.v.head<2>() = u.head<2>(); }
+inline Vec3 planar_accelerations(const RigidAcceleration& a) noexcept { return {a.a.x(), a.a.y(), a.alpha.z()}; }
+inline Vec3 planar_accelerations(const Vec3& particle) noexcept { return {particle.x(), particle.y(), 0.0}; }
+inline void set_planar_accelerations(const Vec3& u, RigidAcceleration& a) noexcept {
+  a.a.head<2>() = u.head<2>();
+  a.alpha.z() = u.z();
+}
+inline void set_planar_accelerations(const Vec3& u, Vec3& particle) noexcept { particle.head<2>() = u.head<2>(); }
+
+// advance_euler_parameters of rotation.hpp for w = (0, 0, omega): the Cayley
+// increments and their products act on (e0, e3) alone.
+inline void advance_planar_rotation(EulerParameters& p, double omega, double h, int updates) noexcept {
+  const double theta = (h / updates) * omega;
+  const double x = 0.0625 * theta * theta;
+  const double inv = 1.0 / (1.0 + x);
+  const double c0 = (1.0 - x) * inv, c3 = (0.5 * inv) * theta;
+  double e0 = p[0], e3 = p[3];
+  for (int k = 0; k < updates; ++k) {
+    const double f0 = e0 * c0 - e3 * c3;
+    e3 = e0 * c3 + e3 * c0;
+    e0 = f0;
+  }
+  const double norm = std::sqrt(e0 * e0 + e3 * e3);
+  p[0] = e0 / norm;
+  p[3] = e3 / norm;
+}
+
+// M^-1 F and M^-1 J^T of one body; a particle has no rotational row.
+inline Vec3 inverse_mass_times(const PointMass& b, const PlanarWrench& w) noexcept { return {w.f.x() / b.m, w.f.y() / b.m, 0.0}; }
+inline Vec3 inverse_mass_times(const PlanarInertia& b, const PlanarWrench& w) noexcept {
+  return {w.f.x() / b.m, w.f.y() / b.m, w.tau / b.J};
+}
+
+template <int N>
+inline Eigen::Matrix<double, 3, N> inverse_mass_times_transpose(const PointMass& b,
+                                                                const Eigen::Matrix<double, N, 3>& J) noexcept {
+  Eigen::Matrix<double, 3, N> x;
+  x.template topRows<2>() = J.template leftCols<2>().transpose() / b.m;
+  x.row(2).setZero();
+  return x;
+}
+
+template <int N>
+inline Eigen::Matrix<double, 3, N> inverse_mass_times_transpose(const PlanarInertia& b,
+                                                                const Eigen::Matrix<double, N, 3>& J) noexcept {
+  Eigen::Matrix<double, 3, N> x;
+  x.template topRows<2>() = J.template leftCols<2>().transpose() / b.m;
+  x.row(2) = J.col(2).transpose() / b.J;
+  return x;
+}
+
+// Point with body-frame offset s (its x, y) from the COM: x = r + R s,
+// x_dot = v + omega R perp(s), x_ddot = a + omega' R perp(s) - omega^2 R s,
+// perp(s) = (-s_y, s_x): carried_point of constraint_kernels.hpp in the plane.
+struct PlanarPoint {
+  Vec2 x;
+  Vec2 x_dot;
+  Eigen::Matrix<double, 2, 3> J;
+  Vec2 quad;
+};
+
+inline PlanarPoint planar_point(const PlanarMotion& m, const Vec3& s) noexcept {
+  const Vec2 r_perp = m.pose.R * Vec2(-s.y(), s.x());
+  const Vec2 r_s = m.pose.R * s.head<2>();
+  PlanarPoint p;
+  p.x = m.pose.r + r_s;
+  p.x_dot = m.vel.v + m.vel.w * r_perp;
+  p.J << 1.0, 0.0, r_perp.x(), 0.0, 1.0, r_perp.y();
+  p.quad = -(m.vel.w * m.vel.w) * r_s;
+  return p;
+}
+
+// add_point_force of forces.hpp in the plane: f (world) at body point s
+// adds its moment about z.
+inline void add_point_force(PlanarWrench& w, const PlanarPose& pose, const Vec3& s, const Vec2& f) noexcept {
+  const Vec2 f_body = pose.R.transpose() * f;
+  w.f += f;
+  w.tau += s.x() * f_body.y() - s.y() * f_body.x();
+}
+
+struct PlanarSpringDamperForce {
+  Vec2 f2;        // force on body 2 at its point (body 1 gets -f2), world
+  double energy;  // stored elastic energy
+};
+
+// spring_damper of forces.hpp with both points in one plane z = const.
+inline PlanarSpringDamperForce planar_spring_damper(const SpringDamper& e, const PlanarMotion& m1,
+                                                    const PlanarMotion& m2) noexcept {
+  const PlanarPoint p1 = planar_point(m1, e.s1), p2 = planar_point(m2, e.s2);
+  const Vec2 d = p2.x - p1.x;
+  const double l = d.norm();
+  const double stretch = l - e.rest_length;
+  PlanarSpringDamperForce out{Vec2::Zero(), 0.5 * e.stiffness * stretch * stretch};
+  if (l > 1e-12) {  // coincident points have no line of action
+    const Vec2 n = d / l;
+    const double tension = e.stiffness * stretch + e.damping * n.dot(p2.x_dot - p1.x_dot);
+    out.f2 = -tension * n;
+  }
+  return out;
+}
+
+// Revolute about z (and spherical, whose other rotations the scene leaves at
+// rest): the joint points coincide in x and y, rows 0 and 1 of the spatial
+// joint.
+inline PlanarRows<2> planar_revolute(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2) noexcept {
+  const PlanarPoint a = planar_point(m1, f.s1), b = planar_point(m2, f.s2);
+  return {b.x - a.x, -a.J, b.J, b.quad - a.quad};
+}
+
+// distance of joints.hpp with both points in one plane z = const.
+inline PlanarRows<1> planar_distance(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2) noexcept {
+  const PlanarPoint a = planar_point(m1, f.s1), b = planar_point(m2, f.s2);
+  const Vec2 d = b.x - a.x, d_dot = b.x_dot - a.x_dot;
+  const double inv_l = 1.0 / f.length;
+  PlanarRows<1> rows;
+  rows.phi[0] = 0.5 * inv_l * (d.squaredNorm() - f.length * f.length);
+  rows.J1.row(0) = -inv_l * d.transpose() * a.J;
+  rows.J2.row(0) = inv_l * d.transpose() * b.J;
+  rows.quad[0] = inv_l * (d_dot.squaredNorm() + d.dot(b.quad - a.quad));
+  return rows;
+}
+
+}  // namespace mbrt
