@@ -25,6 +25,7 @@
 #include "four_bar_spatial.hpp"
 #include "four_bar_special.hpp"
 #include "loaded_four_bar_planar.hpp"
+#include "loaded_four_bar_planar_general.hpp"
 #include "loaded_four_bar_spatial.hpp"
 #include "two_masses_general.hpp"
 #include "two_masses_special.hpp"
@@ -130,6 +131,18 @@ TEST_CASE("planar coordinates: a four-bar under a damped spring, torques, a poin
   CHECK(applies("loaded_four_bar.yaml", {"planar"}));
   CHECK(DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kRoundOff);
   CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kMultiplierRoundOff);
+}
+
+TEST_CASE("planar coordinates with every other specialization turned off equal the planar step") {
+  mbrt::codegen::Specializations planar_only = mbrt::codegen::Specializations::none();
+  planar_only.planar = true;
+  const mbrt::codegen::Analysis a =
+      mbrt::codegen::analyse(mbrt::codegen::load_model(std::string(MBRT_TEST_MODELS) + "/loaded_four_bar.yaml"), planar_only);
+  CHECK(a.planar.applies);
+  CHECK(max_difference(mbrt::models::loaded_four_bar_planar::initial_state(),
+                       mbrt::models::loaded_four_bar_planar_general::initial_state(),
+                       mbrt::models::loaded_four_bar_planar::step, mbrt::models::loaded_four_bar_planar_general::step,
+                       kSteps) < kRoundOff);
 }
 
 TEST_CASE("planar coordinates: the four-bar keeps 8 of its 20 rows; --no-specialize=planar keeps all") {

@@ -51,6 +51,9 @@ struct PlanarRows {
   Eigen::Matrix<double, N, 3> J1;
   Eigen::Matrix<double, N, 3> J2;
   Eigen::Matrix<double, N, 1> quad;
+  // Zero: planar scenes have no drivers. Stacked only where the no_drivers
+  // specialization is turned off, as in the spatial step.
+  Eigen::Matrix<double, N, 1> phi_t = Eigen::Matrix<double, N, 1>::Zero();
 };
 
 // R(p) of rotation.hpp with e1 = e2 = 0, its upper-left 2 x 2 block.
