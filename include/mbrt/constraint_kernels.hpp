@@ -13,11 +13,12 @@
 
 namespace mbrt {
 
-template <int N>
+// N rows over a body's C velocity columns: 6 in space, 3 in the plane (planar.hpp).
+template <int N, int C = 6>
 struct ConstraintRows {
   Eigen::Matrix<double, N, 1> phi;
-  Eigen::Matrix<double, N, 6> J1;
-  Eigen::Matrix<double, N, 6> J2;
+  Eigen::Matrix<double, N, C> J1;
+  Eigen::Matrix<double, N, C> J2;
   Eigen::Matrix<double, N, 1> quad;
   Eigen::Matrix<double, N, 1> phi_t = Eigen::Matrix<double, N, 1>::Zero();
 };

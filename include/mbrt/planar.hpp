@@ -45,16 +45,10 @@ struct PlanarInertia {
   double J;
 };
 
+// phi_t stays zero: planar scenes have no drivers. It is stacked only where
+// the no_drivers specialization is turned off, as in the spatial step.
 template <int N>
-struct PlanarRows {
-  Eigen::Matrix<double, N, 1> phi;
-  Eigen::Matrix<double, N, 3> J1;
-  Eigen::Matrix<double, N, 3> J2;
-  Eigen::Matrix<double, N, 1> quad;
-  // Zero: planar scenes have no drivers. Stacked only where the no_drivers
-  // specialization is turned off, as in the spatial step.
-  Eigen::Matrix<double, N, 1> phi_t = Eigen::Matrix<double, N, 1>::Zero();
-};
+using PlanarRows = ConstraintRows<N, 3>;
 
 // R(p) of rotation.hpp with e1 = e2 = 0, its upper-left 2 x 2 block.
 inline PlanarPose planar_pose_of(const RigidState& s) noexcept {
