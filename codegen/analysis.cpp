@@ -283,7 +283,9 @@ std::vector<Skipped> skipped_code(const Model& model, const Analysis& a) {
                                         " off-diagonal blocks of S's factor: zero, never formed"});
   }
   if (a.planar.applies) {
-    out.push_back({"planar", "motion in the x-y plane: x, y and angle per body, " +
+    const Plane plane{a.planar.normal};
+    out.push_back({"planar", "motion in the " + plane.name() + " plane: two coordinates and the angle about " +
+                                 plane.axis_name() + " per body, " +
                                  std::to_string(a.planar.constraint_rows) + " of " + std::to_string(a.constraint_rows) +
                                  " constraint rows (the in-plane ones)"});
   }

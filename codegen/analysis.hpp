@@ -74,12 +74,15 @@ struct Ali3pPlan {
 };
 
 // The planar specialization (codegen/planar_scene.cpp): whether the scene
-// moves in the world x-y plane, and each constraint block's in-plane rows,
-// which are the block's first rows in the spatial code.
+// moves in a plane of world coordinates, the plane's normal (world axis 0, 1
+// or 2), and each constraint block's in-plane rows with the row of the
+// spatial block each one is.
 struct PlanarPlan {
   bool applies = false;
   std::string refusal;                       // why not, when it does not apply
+  int normal = 2;
   std::vector<ConstraintBlock> constraints;  // same order as Analysis::constraints, planar kernels and rows
+  std::vector<std::vector<int>> spatial_rows;  // per block, the spatial block's row of each planar row
   int constraint_rows = 0;
 };
 

@@ -122,12 +122,19 @@ void Emitter::constants(std::ostringstream& o) const {
       o << "const mbrt::Vec3 " << weight_of(static_cast<int>(i)) << " = " << vec3(b.mass * *m_.gravity) << ";\n";
     }
   }
+  frame_constants(o);
+  o << "\n";
+}
+
+// Joint frames, inputs' axes and points, and force elements, in the
+// emitter's axes (axes(): plane coordinates for the planar step).
+void Emitter::frame_constants(std::ostringstream& o) const {
   o << "\n// Joint and driver frames in body axes; drivers' functions of time.\n";
   for (int j = 0; j < blocks(); ++j) {
     const JointFrame& f = block(j).frame;
-    o << "const mbrt::JointFrame " << jname(j) << "_frame{" << vec3(f.s1) << ", " << vec3(f.s2) << ",\n    "
-      << vec3(f.a1) << ", " << vec3(f.b1) << ", " << vec3(f.c1) << ",\n    " << vec3(f.a2) << ", " << vec3(f.b2)
-      << ", " << vec3(f.c2) << ", " << num(f.length) << ", " << num(f.pitch) << "};\n";
+    o << "const mbrt::JointFrame " << jname(j) << "_frame{" << vec3(axes(f.s1)) << ", " << vec3(axes(f.s2)) << ",\n    "
+      << vec3(axes(f.a1)) << ", " << vec3(axes(f.b1)) << ", " << vec3(axes(f.c1)) << ",\n    " << vec3(axes(f.a2)) << ", " << vec3(axes(f.b2))
+      << ", " << vec3(axes(f.c2)) << ", " << num(f.length) << ", " << num(f.pitch) << "};\n";
     if (const TimeFunction* fn = block(j).function) {
       if (fn->is_sine) {
         o << "const mbrt::Sine " << jname(j) << "_sine{" << num(fn->amplitude) << ", " << num(fn->omega) << ", "
@@ -143,10 +150,10 @@ void Emitter::constants(std::ostringstream& o) const {
   for (size_t i = 0; i < m_.inputs.size(); ++i) {
     const Input& in = m_.inputs[i];
     const InputPlan& p = a_.inputs[i];
-    o << "const mbrt::Vec3 " << in.name << "_axis = " << vec3(p.axis1) << ";\n";
+    o << "const mbrt::Vec3 " << in.name << "_axis = " << vec3(axes(p.axis1)) << ";\n";
     if (in.type == InputType::joint_force) {
-      o << "const mbrt::Vec3 " << in.name << "_s1 = " << vec3(p.s1) << ";\n"
-        << "const mbrt::Vec3 " << in.name << "_s2 = " << vec3(p.s2) << ";\n";
+      o << "const mbrt::Vec3 " << in.name << "_s1 = " << vec3(axes(p.s1)) << ";\n"
+        << "const mbrt::Vec3 " << in.name << "_s2 = " << vec3(axes(p.s2)) << ";\n";
     }
   }
   o << "\n// Force elements in body axes.\n";
@@ -156,27 +163,26 @@ void Emitter::constants(std::ostringstream& o) const {
     const std::string n = "force_" + std::to_string(e);
     switch (f.type) {
       case ForceType::spring_damper:
-        o << "const mbrt::SpringDamper " << n << "{" << vec3(p.spring.s1) << ", " << vec3(p.spring.s2) << ", "
+        o << "const mbrt::SpringDamper " << n << "{" << vec3(axes(p.spring.s1)) << ", " << vec3(axes(p.spring.s2)) << ", "
           << num(p.spring.stiffness) << ", " << num(p.spring.damping) << ", " << num(p.spring.rest_length)
           << "};  // spring_damper " << m_.body_name(f.body1) << " - " << m_.body_name(f.body2) << "\n";
         break;
       case ForceType::torque:
-        o << "const mbrt::AxialTorque " << n << "{" << vec3(p.torque.axis1) << ", " << num(p.torque.value)
+        o << "const mbrt::AxialTorque " << n << "{" << vec3(axes(p.torque.axis1)) << ", " << num(p.torque.value)
           << "};  // torque on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1) << "\n";
         break;
       case ForceType::force:
-        o << "const mbrt::Vec3 " << n << "_point = " << vec3(p.point) << ";  // force on "
+        o << "const mbrt::Vec3 " << n << "_point = " << vec3(axes(p.point)) << ";  // force on "
           << m_.body_name(f.body) << "\n"
-          << "const mbrt::Vec3 " << n << "_vector = " << vec3(f.vector) << ";\n";
+          << "const mbrt::Vec3 " << n << "_vector = " << vec3(axes(f.vector)) << ";\n";
         break;
     }
   }
-  o << "\n";
 }
 
 void Emitter::workspace_types(std::ostringstream& o) const {
   o << "using Rows = Eigen::Matrix<double, " << (planar_ ? "kPlanarRows" : "kConstraintRows") << ", 1>;\n"
-    << "using BodyVectors = std::array<mbrt::" << (planar_ ? "Vec3, kBodies>;  // [vx; vy; omega_z]" : "Vec6, kBodies>;  // [v; w_body]")
+    << "using BodyVectors = std::array<mbrt::" << (planar_ ? "Vec3, kBodies>;  // [v_i; v_j; omega_k], plane coordinates" : "Vec6, kBodies>;  // [v; w_body]")
     << " per body\n\n"
     << "struct Kinematics {\n"
     << "  std::array<mbrt::" << type("BodyPose") << ", kBodies> pose;\n"
@@ -215,7 +221,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
   const std::string velocity_type = "std::array<mbrt::" + type("BodyVelocity") + ", kBodies>";
   o << velocity_type << " velocities_of(const State& s) noexcept {\n  " << velocity_type << " vel;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  vel[" << i << "] = mbrt::" << (planar_ ? "planar_" : "") << "velocity_of(" << state_of(static_cast<int>(i))
+    o << "  vel[" << i << "] = mbrt::" << (planar_ ? "planar_velocity_of<kNormal>(" : "velocity_of(") << state_of(static_cast<int>(i))
       << ");\n";
   }
   o << "  return vel;\n}\n\n";
@@ -274,7 +280,7 @@ void Emitter::loads_stage(std::ostringstream& o) const {
     const BodyPlan& p = a_.bodies[i];
     if (folded_weights()) o << "  l.w[" << i << "].f += " << weight_of(static_cast<int>(i)) << ";\n";
     else if (a_.gravity) o << "  l.w[" << i << "].f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
-    if (p.rigid && !p.isotropic && !planar_) {  // planar: omega along z, a principal axis
+    if (p.rigid && !p.isotropic && !planar_) {  // planar: omega along the normal, a principal axis
       o << "  l.w[" << i << "].tau += mbrt::gyroscopic_torque(" << mass_of(static_cast<int>(i)) << ", k.vel[" << i
         << "].w);\n";
     }
@@ -553,7 +559,7 @@ void Emitter::kinematics_function(std::ostringstream& o) const {
   o << "// (s) => (k): pose and velocity of every body.\n"
     << "void kinematics(const State& s, Kinematics& k) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  k.pose[" << i << "] = mbrt::" << (planar_ ? "planar_" : "") << "pose_of(" << state_of(static_cast<int>(i))
+    o << "  k.pose[" << i << "] = mbrt::" << (planar_ ? "planar_pose_of<kNormal>(" : "pose_of(") << state_of(static_cast<int>(i))
       << ");  // " << m_.bodies[i].name << "\n";
   }
   o << "  k.vel = velocities_of(s);\n}\n\n";

@@ -75,7 +75,7 @@ void Emitter::input_load(std::ostringstream& o, const Input& in, const InputPlan
   const std::string n = in.name;
   o << "  {  // input " << n << ": " << input_type_name(in.type) << " " << input_target(in) << " on "
     << m_.body_name(p.body2) << ", reaction on " << m_.body_name(p.body1) << "\n";
-  if (planar_) {  // a torque about z (codegen/planar_scene.cpp)
+  if (planar_) {  // a torque about the normal, z in plane coordinates (codegen/planar_scene.cpp)
     o << "    const double t = u[input::" << n << "] * " << n << "_axis.z();\n";
     if (p.body2 != kGround) o << "    l.w[" << p.body2 << "].tau += t;\n";
     if (p.body1 != kGround) o << "    l.w[" << p.body1 << "].tau -= t;\n";

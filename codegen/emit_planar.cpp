@@ -15,8 +15,8 @@ void Emitter::planar_stages(std::ostringstream& o) const {
   planar.constraints = a_.planar.constraints;
   planar.constraint_rows = a_.planar.constraint_rows;
   const Emitter e(m_, planar, true);
-  o << "// The step in planar coordinates: motion in the x-y plane, per body x, y and\n"
-    << "// the rotation about z, the in-plane constraint rows only.\n"
+  o << "// The step in planar coordinates: motion in one plane, per body two\n"
+    << "// coordinates and the rotation about the normal, the in-plane constraint rows only.\n"
     << "namespace planar {\n\n";
   e.planar_constants(o);
   e.workspace_types(o);
@@ -32,30 +32,36 @@ void Emitter::planar_stages(std::ostringstream& o) const {
 }
 
 void Emitter::planar_constants(std::ostringstream& o) const {
-  // A body turning about z, a principal axis, has no gyroscopic torque:
+  // A body turning about the normal, a principal axis, has no gyroscopic torque:
   // without dampers one implicit stage.
   const bool damped = std::any_of(m_.forces.begin(), m_.forces.end(),
                                   [](const Force& f) { return f.type == ForceType::spring_damper && f.damping != 0.0; });
-  o << "constexpr int kPlanarRows = " << a_.constraint_rows << ";  // of kConstraintRows\n"
+  const Plane plane{a_.planar.normal};
+  o << "constexpr int kNormal = " << plane.normal << ";  // the plane " << plane.name() << ", normal to world "
+    << plane.axis_name() << "\n"
+    << "constexpr int kPlanarRows = " << a_.constraint_rows << ";  // of kConstraintRows\n"
     << "constexpr int kStages = " << (a_.specialize.single_stage && !damped ? 1 : 2) << ";  // implicit stages per step\n";
   if (a_.gravity && !folded_weights()) {
-    const Eigen::Vector3d g = m_.gravity.value_or(Eigen::Vector3d::Zero());
+    const Eigen::Vector3d g = axes(m_.gravity.value_or(Eigen::Vector3d::Zero()));
     o << "const mbrt::Vec2 kGravity(" << num(g.x()) << ", " << num(g.y()) << ");\n";
   }
   o << "const mbrt::PlanarPose kGroundPose = mbrt::planar_ground_pose();\n"
     << "const mbrt::PlanarVelocity kGroundVelocity = mbrt::planar_ground_velocity();\n\n"
-    << "// Masses and the moments of inertia about z (particles keep their PointMass).\n";
+    << "// Masses and the moments of inertia about the normal (particles keep their PointMass).\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const Body& b = m_.bodies[i];
     if (a_.bodies[i].rigid) {
       o << "const mbrt::PlanarInertia " << mass_of(static_cast<int>(i)) << "{" << num(b.mass) << ", "
-        << num(b.inertia(2, 2)) << "};\n";
+        << num(b.inertia(plane.normal, plane.normal)) << "};\n";
     }
     if (folded_weights()) {
-      const Eigen::Vector3d w = b.mass * *m_.gravity;
+      const Eigen::Vector3d w = axes(b.mass * *m_.gravity);
       o << "const mbrt::Vec2 " << weight_of(static_cast<int>(i)) << "(" << num(w.x()) << ", " << num(w.y()) << ");\n";
     }
   }
+  // Plane coordinates are world ones in the x-y plane; in another, the
+  // frames and loads are given again in them, hiding the spatial constants.
+  if (plane.normal != 2) frame_constants(o);
   o << "\n";
 }
 
@@ -63,13 +69,13 @@ void Emitter::planar_velocity_helpers(std::ostringstream& o) const {
   o << "// (s) => (u): (vx, vy, omega_z) per body.\n"
     << "BodyVectors generalized_velocities(const State& s) noexcept {\n  BodyVectors u;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  u[" << i << "] = mbrt::planar_velocities(" << state_of(static_cast<int>(i)) << ");\n";
+    o << "  u[" << i << "] = mbrt::planar_velocities<kNormal>(" << state_of(static_cast<int>(i)) << ");\n";
   }
   o << "  return u;\n}\n\n"
     << "// (u) => (s): the in-plane velocities; the others stay zero.\n"
     << "void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  mbrt::set_planar_velocities(u[" << i << "], " << state_of(static_cast<int>(i)) << ");\n";
+    o << "  mbrt::set_planar_velocities<kNormal>(u[" << i << "], " << state_of(static_cast<int>(i)) << ");\n";
   }
   o << "}\n\n";
   const auto acceleration = [&](size_t i) {
@@ -79,41 +85,32 @@ void Emitter::planar_velocity_helpers(std::ostringstream& o) const {
   o << "// (a) => (s): accelerations kept for the next step.\n"
     << "void set_accelerations(const BodyVectors& a, State& s) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  mbrt::set_planar_accelerations(a[" << i << "], " << acceleration(i) << ");\n";
+    o << "  mbrt::set_planar_accelerations<kNormal>(a[" << i << "], " << acceleration(i) << ");\n";
   }
   o << "}\n\n"
     << "BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  a[" << i << "] = mbrt::planar_accelerations(" << acceleration(i) << ");\n";
+    o << "  a[" << i << "] = mbrt::planar_accelerations<kNormal>(" << acceleration(i) << ");\n";
   }
   o << "  return a;\n}\n\n";
 }
 
 void Emitter::planar_explicit_stage(std::ostringstream& o) const {
   o << R"(// (s, accelerations at t) => (s): explicit stage, central difference in the
-// plane (docs/staggered-pcst.md, eqs. 1-3); the rotation about z by the
-// spatial step's Cayley updates.
+// plane (docs/staggered-pcst.md, eqs. 1-3); the rotation about the normal by
+// the spatial step's Cayley updates.
 void explicit_stage(State& s) noexcept {
   for (int b = 0; b < kRigidBodies; ++b) {
-    mbrt::RigidState& x = s.rigid[b];
-    const mbrt::RigidAcceleration& a = s.rigid_acceleration[b];
-    x.v.head<2>() += (0.5 * h) * a.a.head<2>();
-    x.w.z() += (0.5 * h) * a.alpha.z();
-    x.r.head<2>() += h * x.v.head<2>();
-    mbrt::advance_planar_rotation(x.p, x.w.z(), h, kEulerUpdates);
+    mbrt::planar_explicit_update<kNormal>(s.rigid[b], s.rigid_acceleration[b], h, kEulerUpdates);
   }
-  for (int b = 0; b < kParticles; ++b) {
-    mbrt::ParticleState& x = s.particle[b];
-    x.v.head<2>() += (0.5 * h) * s.particle_acceleration[b].head<2>();
-    x.r.head<2>() += h * x.v.head<2>();
-  }
+  for (int b = 0; b < kParticles; ++b) mbrt::planar_explicit_update<kNormal>(s.particle[b], s.particle_acceleration[b], h);
   s.t += h;
 }
 
 )";
 }
 
-// Loads of loads_stage in the plane: torques about z, forces and springs
+// Loads of loads_stage in the plane: torques about the normal, forces and springs
 // whose points lie in their bodies' planes (codegen/planar_scene.cpp).
 void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std::string& n) const {
   switch (f.type) {
@@ -126,7 +123,7 @@ void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std
       o << "    l.elastic_energy += e.energy;\n  }\n";
       break;
     case ForceType::torque:
-      o << "  // torque about z on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1) << "\n";
+      o << "  // torque about the normal on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1) << "\n";
       if (f.body2 != kGround) o << "  l.w[" << f.body2 << "].tau += " << n << ".value * " << n << ".axis1.z();\n";
       if (f.body1 != kGround) o << "  l.w[" << f.body1 << "].tau -= " << n << ".value * " << n << ".axis1.z();\n";
       break;
@@ -137,16 +134,26 @@ void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std
   }
 }
 
-// Each planar block's rows are the first rows of its spatial block; the
-// spatial block's other (out-of-plane) multipliers are zero in a planar scene.
+// Each planar row is one row of its spatial block (PlanarPlan::spatial_rows);
+// the spatial block's other (out-of-plane) multipliers are zero in a planar scene.
 void Emitter::store_multipliers(std::ostringstream& o) const {
   o << "// (lambda) => (s.lambda): the in-plane rows of every spatial block.\n"
     << "void store_multipliers(const Rows& lambda, State& s) noexcept {\n";
   if (blocks() == 0) o << "  (void)lambda;\n  (void)s;\n";
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& p = a_.planar.constraints[static_cast<size_t>(j)];
-    o << "  s.lambda.segment<" << p.rows << ">(" << first_row(j) << ") = lambda.segment<" << p.rows << ">("
-      << p.first_row << ");  // " << jname(j) << "\n";
+    const std::vector<int>& rows = a_.planar.spatial_rows[static_cast<size_t>(j)];
+    bool leading = true;  // the spatial block's first rows, in order
+    for (size_t r = 0; r < rows.size(); ++r) leading = leading && rows[r] == static_cast<int>(r);
+    if (leading) {
+      o << "  s.lambda.segment<" << p.rows << ">(" << first_row(j) << ") = lambda.segment<" << p.rows << ">("
+        << p.first_row << ");  // " << jname(j) << "\n";
+      continue;
+    }
+    for (size_t r = 0; r < rows.size(); ++r) {
+      o << "  s.lambda[" << first_row(j) + rows[r] << "] = lambda[" << p.first_row + static_cast<int>(r) << "];  // "
+        << jname(j) << "\n";
+    }
   }
   o << "}\n\n";
 }

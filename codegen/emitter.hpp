@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "emit_cpp.hpp"
+#include "planar_scene.hpp"
 
 namespace mbrt::codegen {
 
@@ -67,6 +68,9 @@ class Emitter {
     return "Planar" + spatial;  // Wrench
   }
   int body_dofs() const { return planar_ ? 3 : 6; }
+  // A constant vector in the axes of the code emitted: the planar step's are
+  // plane coordinates (codegen/planar_scene.hpp).
+  Eigen::Vector3d axes(const Eigen::Vector3d& v) const { return planar_ ? Plane{a_.planar.normal}.coordinates(v) : v; }
   // Whether this emitter writes the step's stages (the spatial one does not when the step is planar).
   bool emits_step() const { return planar_ || !a_.planar.applies; }
 
@@ -112,6 +116,7 @@ class Emitter {
   std::string header() const;
   std::string source() const;
   void constants(std::ostringstream& o) const;
+  void frame_constants(std::ostringstream& o) const;  // joints', inputs' and force elements' vectors, in axes()
   void workspace_types(std::ostringstream& o) const;
   void velocity_helpers(std::ostringstream& o) const;
   void kinematics_function(std::ostringstream& o) const;

@@ -19,7 +19,7 @@ struct Specializations {
   bool unloaded_bodies = true;  // bodies without applied loads: M^-1 F is zero, not computed
   bool no_drivers = true;       // no drivers: no explicit time terms phi_t
   bool sparse_factor = true;    // Cholesky factor over S's block pattern (else every block)
-  bool planar = true;           // motion in the x-y plane: x, y and angle per body, in-plane rows only
+  bool planar = true;           // motion in a coordinate plane: two coordinates and an angle per body, in-plane rows only
 
   static Specializations none() { return {false, false, false, false, false, false, false, false, false}; }
 };

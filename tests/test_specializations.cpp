@@ -5,7 +5,10 @@
 // (else the comparison would prove nothing).
 #include <doctest/doctest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
 #include <string>
 
@@ -27,6 +30,10 @@
 #include "loaded_four_bar_planar.hpp"
 #include "loaded_four_bar_planar_general.hpp"
 #include "loaded_four_bar_spatial.hpp"
+#include "loaded_four_bar_xz_planar.hpp"
+#include "loaded_four_bar_xz_spatial.hpp"
+#include "loaded_four_bar_yz_planar.hpp"
+#include "loaded_four_bar_yz_spatial.hpp"
 #include "two_masses_general.hpp"
 #include "two_masses_special.hpp"
 
@@ -131,6 +138,37 @@ TEST_CASE("planar coordinates: a four-bar under a damped spring, torques, a poin
   CHECK(applies("loaded_four_bar.yaml", {"planar"}));
   CHECK(DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kRoundOff);
   CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kMultiplierRoundOff);
+}
+
+TEST_CASE("planar coordinates in the x-z and y-z planes: the loaded four-bar turned into them equals the spatial code") {
+  using namespace mbrt::codegen;
+  const Analysis xz = analyse(load_model(std::string(MBRT_TEST_MODELS) + "/loaded_four_bar_xz.yaml"));
+  CHECK(xz.planar.applies);
+  CHECK(xz.planar.normal == 1);
+  const Analysis yz = analyse(load_model(std::string(MBRT_TEST_MODELS) + "/loaded_four_bar_yz.yaml"));
+  CHECK(yz.planar.applies);
+  CHECK(yz.planar.normal == 0);
+  CHECK(DIFFERENCE_FROM_SPATIAL(loaded_four_bar_xz) < kRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(loaded_four_bar_xz) < kMultiplierRoundOff);
+  CHECK(DIFFERENCE_FROM_SPATIAL(loaded_four_bar_yz) < kRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(loaded_four_bar_yz) < kMultiplierRoundOff);
+}
+
+TEST_CASE("planar coordinates: the loaded four-bar in the x-z plane moves as the x-y one turned about x") {
+  auto xy = mbrt::models::loaded_four_bar_planar::initial_state();
+  auto xz = mbrt::models::loaded_four_bar_xz_planar::initial_state();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  double moved = 0.0, difference = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    REQUIRE(mbrt::models::loaded_four_bar_planar::step(xy) == mbrt::StepStatus::ok);
+    REQUIRE(mbrt::models::loaded_four_bar_xz_planar::step(xz) == mbrt::StepStatus::ok);
+  }
+  for (size_t b = 0; b < xy.rigid.size(); ++b) {
+    moved = std::max(moved, (xy.rigid[b].r - mbrt::models::loaded_four_bar_planar::initial_state().rigid[b].r).norm());
+    difference = std::max(difference, (xz.rigid[b].r - turn * xy.rigid[b].r).norm());
+  }
+  CHECK(moved > 0.1);
+  CHECK(difference < kRoundOff);
 }
 
 TEST_CASE("planar coordinates with every other specialization turned off equal the planar step") {

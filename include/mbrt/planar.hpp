@@ -1,11 +1,16 @@
-// Planar coordinates for scenes that move in the world x-y plane
-// (docs/specializations.md, "planar"): per body x, y and the rotation about
-// z, velocities u = (vx, vy, omega_z), constraint rows of the in-plane
-// directions only. The step keeps the State's spatial fields and reads and
-// writes their in-plane components: a rotation about z has Euler parameters
-// (cos(theta/2), 0, 0, sin(theta/2)), and omega_z is the same in body and
-// world axes. Every formula is the spatial one with the out-of-plane
-// components zero, so both give the same trajectory to round-off.
+// Planar coordinates for scenes that move in a plane of world coordinates
+// (docs/specializations.md, "planar"): per body two coordinates in the
+// plane and the rotation about its normal, velocities u = (v_i, v_j,
+// omega_k), constraint rows of the in-plane directions only. The plane is
+// named by its normal, world axis k (Normal: 0, 1 or 2); its coordinates are
+// i = k + 1 and j = k + 2 (mod 3), so that (i, j, k) is right-handed and the
+// formulas are those of the x-y plane. The step keeps the State's spatial
+// fields and reads and writes their in-plane components: a rotation about k
+// has Euler parameters (cos(theta/2), sin(theta/2) along k), and omega_k is
+// the same in body and world axes. The generator gives every constant in
+// plane coordinates (x, y, z) = (i, j, k). Every formula is the spatial one
+// with the out-of-plane components zero, so both give the same trajectory to
+// round-off.
 #pragma once
 
 #include <cmath>
@@ -50,51 +55,113 @@ struct PlanarInertia {
 template <int N>
 using PlanarRows = ConstraintRows<N, 3>;
 
-// R(p) of rotation.hpp with e1 = e2 = 0, its upper-left 2 x 2 block.
+// The in-plane components (i, j) of a world vector, or of a body-frame one
+// of a body turned about k alone.
+template <int Normal>
+inline Vec2 in_plane(const Vec3& v) noexcept {
+  return {v[(Normal + 1) % 3], v[(Normal + 2) % 3]};
+}
+template <int Normal>
+inline void set_in_plane(const Vec2& x, Vec3& v) noexcept {
+  v[(Normal + 1) % 3] = x.x();
+  v[(Normal + 2) % 3] = x.y();
+}
+
+// R(p) of rotation.hpp for a rotation about k, its in-plane 2 x 2 block.
+template <int Normal>
 inline PlanarPose planar_pose_of(const RigidState& s) noexcept {
-  const double e0 = s.p[0], e3 = s.p[3];
-  PlanarPose pose{s.r.head<2>(), Mat2()};
-  pose.R << 1.0 - 2.0 * (e3 * e3), -2.0 * (e0 * e3), 2.0 * (e0 * e3), 1.0 - 2.0 * (e3 * e3);
+  const double e0 = s.p[0], ek = s.p[1 + Normal];
+  PlanarPose pose{in_plane<Normal>(s.r), Mat2()};
+  pose.R << 1.0 - 2.0 * (ek * ek), -2.0 * (e0 * ek), 2.0 * (e0 * ek), 1.0 - 2.0 * (ek * ek);
   return pose;
 }
-inline PlanarPose planar_pose_of(const ParticleState& s) noexcept { return {s.r.head<2>(), Mat2::Identity()}; }
-inline PlanarVelocity planar_velocity_of(const RigidState& s) noexcept { return {s.v.head<2>(), s.w.z()}; }
-inline PlanarVelocity planar_velocity_of(const ParticleState& s) noexcept { return {s.v.head<2>(), 0.0}; }
+template <int Normal>
+inline PlanarPose planar_pose_of(const ParticleState& s) noexcept {
+  return {in_plane<Normal>(s.r), Mat2::Identity()};
+}
+template <int Normal>
+inline PlanarVelocity planar_velocity_of(const RigidState& s) noexcept {
+  return {in_plane<Normal>(s.v), s.w[Normal]};
+}
+template <int Normal>
+inline PlanarVelocity planar_velocity_of(const ParticleState& s) noexcept {
+  return {in_plane<Normal>(s.v), 0.0};
+}
 inline PlanarPose planar_ground_pose() noexcept { return {Vec2::Zero(), Mat2::Identity()}; }
 inline PlanarVelocity planar_ground_velocity() noexcept { return {Vec2::Zero(), 0.0}; }
 
-// u = (vx, vy, omega_z) of a body, read from and written to the State.
-inline Vec3 planar_velocities(const RigidState& s) noexcept { return {s.v.x(), s.v.y(), s.w.z()}; }
-inline Vec3 planar_velocities(const ParticleState& s) noexcept { return {s.v.x(), s.v.y(), 0.0}; }
+// u = (v_i, v_j, omega_k) of a body, read from and written to the State.
+template <int Normal>
+inline Vec3 planar_velocities(const RigidState& s) noexcept {
+  const Vec2 v = in_plane<Normal>(s.v);
+  return {v.x(), v.y(), s.w[Normal]};
+}
+template <int Normal>
+inline Vec3 planar_velocities(const ParticleState& s) noexcept {
+  const Vec2 v = in_plane<Normal>(s.v);
+  return {v.x(), v.y(), 0.0};
+}
+template <int Normal>
 inline void set_planar_velocities(const Vec3& u, RigidState& s) noexcept {
-  s.v.head<2>() = u.head<2>();
-  s.w.z() = u.z();
+  set_in_plane<Normal>(u.head<2>(), s.v);
+  s.w[Normal] = u.z();
 }
-inline void set_planar_velocities(const Vec3& u, ParticleState& s) noexcept { s.v.head<2>() = u.head<2>(); }
-inline Vec3 planar_accelerations(const RigidAcceleration& a) noexcept { return {a.a.x(), a.a.y(), a.alpha.z()}; }
-inline Vec3 planar_accelerations(const Vec3& particle) noexcept { return {particle.x(), particle.y(), 0.0}; }
+template <int Normal>
+inline void set_planar_velocities(const Vec3& u, ParticleState& s) noexcept {
+  set_in_plane<Normal>(u.head<2>(), s.v);
+}
+template <int Normal>
+inline Vec3 planar_accelerations(const RigidAcceleration& a) noexcept {
+  const Vec2 x = in_plane<Normal>(a.a);
+  return {x.x(), x.y(), a.alpha[Normal]};
+}
+template <int Normal>
+inline Vec3 planar_accelerations(const Vec3& particle) noexcept {
+  const Vec2 x = in_plane<Normal>(particle);
+  return {x.x(), x.y(), 0.0};
+}
+template <int Normal>
 inline void set_planar_accelerations(const Vec3& u, RigidAcceleration& a) noexcept {
-  a.a.head<2>() = u.head<2>();
-  a.alpha.z() = u.z();
+  set_in_plane<Normal>(u.head<2>(), a.a);
+  a.alpha[Normal] = u.z();
 }
-inline void set_planar_accelerations(const Vec3& u, Vec3& particle) noexcept { particle.head<2>() = u.head<2>(); }
+template <int Normal>
+inline void set_planar_accelerations(const Vec3& u, Vec3& particle) noexcept {
+  set_in_plane<Normal>(u.head<2>(), particle);
+}
 
-// advance_euler_parameters of rotation.hpp for w = (0, 0, omega): the Cayley
-// increments and their products act on (e0, e3) alone.
+// advance_euler_parameters of rotation.hpp for w = omega along k: the Cayley
+// increments and their products act on (e0, e_k) alone.
+template <int Normal>
 inline void advance_planar_rotation(EulerParameters& p, double omega, double h, int updates) noexcept {
   const double theta = (h / updates) * omega;
   const double x = 0.0625 * theta * theta;
   const double inv = 1.0 / (1.0 + x);
-  const double c0 = (1.0 - x) * inv, c3 = (0.5 * inv) * theta;
-  double e0 = p[0], e3 = p[3];
+  const double c0 = (1.0 - x) * inv, ck = (0.5 * inv) * theta;
+  double e0 = p[0], ek = p[1 + Normal];
   for (int k = 0; k < updates; ++k) {
-    const double f0 = e0 * c0 - e3 * c3;
-    e3 = e0 * c3 + e3 * c0;
+    const double f0 = e0 * c0 - ek * ck;
+    ek = e0 * ck + ek * c0;
     e0 = f0;
   }
-  const double norm = std::sqrt(e0 * e0 + e3 * e3);
+  const double norm = std::sqrt(e0 * e0 + ek * ek);
   p[0] = e0 / norm;
-  p[3] = e3 / norm;
+  p[1 + Normal] = ek / norm;
+}
+
+// The explicit stage of the staggered step for one body (docs/staggered-pcst.md,
+// eqs. 1-3): half a step of velocity, a step of position, in the plane.
+template <int Normal>
+inline void planar_explicit_update(RigidState& x, const RigidAcceleration& a, double h, int updates) noexcept {
+  set_in_plane<Normal>(in_plane<Normal>(x.v) + (0.5 * h) * in_plane<Normal>(a.a), x.v);
+  x.w[Normal] += (0.5 * h) * a.alpha[Normal];
+  set_in_plane<Normal>(in_plane<Normal>(x.r) + h * in_plane<Normal>(x.v), x.r);
+  advance_planar_rotation<Normal>(x.p, x.w[Normal], h, updates);
+}
+template <int Normal>
+inline void planar_explicit_update(ParticleState& x, const Vec3& a, double h) noexcept {
+  set_in_plane<Normal>(in_plane<Normal>(x.v) + (0.5 * h) * in_plane<Normal>(a), x.v);
+  set_in_plane<Normal>(in_plane<Normal>(x.r) + h * in_plane<Normal>(x.v), x.r);
 }
 
 // M^-1 F and M^-1 J^T of one body; a particle has no rotational row.
