@@ -1,5 +1,5 @@
-// staggered-pcst's step in planar coordinates (docs/specializations.md,
-// "planar"): the same stages as emit_staggered.cpp, emitted by a second
+// The step of staggered-pcst, baumgarte or blajer in planar coordinates
+// (docs/specializations.md, "planar"): the same stages as emit_staggered.cpp, emitted by a second
 // Emitter whose constraint blocks are the in-plane rows, into a namespace
 // `planar` whose types (Rows, BodyVectors, Kinematics, ...) and functions
 // shadow the spatial ones. The spatial ones stay for initial_state(),
@@ -33,14 +33,15 @@ void Emitter::planar_stages(std::ostringstream& o) const {
 
 void Emitter::planar_constants(std::ostringstream& o) const {
   // A body turning about the normal, a principal axis, has no gyroscopic torque:
-  // without dampers one implicit stage.
+  // without dampers (and Baumgarte's velocity term) one implicit stage.
   const bool damped = std::any_of(m_.forces.begin(), m_.forces.end(),
                                   [](const Force& f) { return f.type == ForceType::spring_damper && f.damping != 0.0; });
+  const bool baumgarte = scheme_kind() == Scheme::baumgarte && a_.constraint_rows > 0;
   const Plane plane{a_.planar.normal};
   o << "constexpr int kNormal = " << plane.normal << ";  // the plane " << plane.name() << ", normal to world "
     << plane.axis_name() << "\n"
     << "constexpr int kPlanarRows = " << a_.constraint_rows << ";  // of kConstraintRows\n"
-    << "constexpr int kStages = " << (a_.specialize.single_stage && !damped ? 1 : 2) << ";  // implicit stages per step\n";
+    << "constexpr int kStages = " << (a_.specialize.single_stage && !damped && !baumgarte ? 1 : 2) << ";  // implicit stages per step\n";
   if (a_.gravity && !folded_weights()) {
     const Eigen::Vector3d g = axes(m_.gravity.value_or(Eigen::Vector3d::Zero()));
     o << "const mbrt::Vec2 kGravity(" << num(g.x()) << ", " << num(g.y()) << ");\n";

@@ -93,11 +93,15 @@ void correct_positions(const ConstraintSystem& c, State& s) noexcept {
   Rows x = stacked_phi(c);
   solve(c, x);
   BodyVectors dq;
-  for (mbrt::Vec6& d : dq) d.setZero();
+  for (auto& d : dq) d.setZero();
   subtract_constraint_forces(c, x, 1.0, dq);
 )";
     for (size_t i = 0; i < m_.bodies.size(); ++i) {
       const std::string st = state_of(static_cast<int>(i));
+      if (planar_) {
+        o << "  mbrt::correct_planar_position<kNormal>(" << st << ", dq[" << i << "]);\n";
+        continue;
+      }
       o << "  " << st << ".r += dq[" << i << "].head<3>();\n";
       if (a_.bodies[i].rigid) {
         o << "  " << st << ".p = mbrt::quaternion_product(" << st << ".p, mbrt::cayley_increment(dq[" << i

@@ -114,7 +114,8 @@ std::string joined(const std::vector<std::string>& reasons) {
 PlanarPlan plan_planar(const Model& model, const Analysis& a) {
   PlanarPlan plan;
   if (!a.specialize.planar) return plan;
-  if (model.solver.scheme != "staggered-pcst") {
+  const std::string& scheme = model.solver.scheme;
+  if (scheme != "staggered-pcst" && scheme != "baumgarte" && scheme != "blajer") {
     plan.refusal = "not for scheme " + model.solver.scheme;
     return plan;
   }

@@ -30,6 +30,10 @@
 #include "loaded_four_bar_planar.hpp"
 #include "loaded_four_bar_planar_general.hpp"
 #include "loaded_four_bar_spatial.hpp"
+#include "loaded_four_bar_baumgarte_planar.hpp"
+#include "loaded_four_bar_baumgarte_spatial.hpp"
+#include "loaded_four_bar_blajer_planar.hpp"
+#include "loaded_four_bar_blajer_spatial.hpp"
 #include "loaded_four_bar_xz_planar.hpp"
 #include "loaded_four_bar_xz_spatial.hpp"
 #include "loaded_four_bar_yz_planar.hpp"
@@ -138,6 +142,21 @@ TEST_CASE("planar coordinates: a four-bar under a damped spring, torques, a poin
   CHECK(applies("loaded_four_bar.yaml", {"planar"}));
   CHECK(DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kRoundOff);
   CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(loaded_four_bar) < kMultiplierRoundOff);
+}
+
+TEST_CASE("planar coordinates in baumgarte and blajer: the loaded four-bar equals the spatial code") {
+  const auto four_bar_in = [](const char* scheme) {
+    mbrt::codegen::Model m = mbrt::codegen::load_model(std::string(MBRT_TEST_MODELS) + "/loaded_four_bar.yaml");
+    m.solver.scheme = scheme;
+    return m;
+  };
+  CHECK(mbrt::codegen::analyse(four_bar_in("baumgarte")).planar.applies);
+  CHECK(mbrt::codegen::analyse(four_bar_in("blajer")).planar.applies);
+  CHECK(DIFFERENCE_FROM_SPATIAL(loaded_four_bar_baumgarte) < kRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(loaded_four_bar_baumgarte) < kMultiplierRoundOff);
+  // Blajer's corrections take a body's rotation through the same increments.
+  CHECK(DIFFERENCE_FROM_SPATIAL(loaded_four_bar_blajer) < kRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(loaded_four_bar_blajer) < kMultiplierRoundOff);
 }
 
 TEST_CASE("planar coordinates in the x-z and y-z planes: the loaded four-bar turned into them equals the spatial code") {

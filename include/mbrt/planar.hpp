@@ -164,6 +164,19 @@ inline void planar_explicit_update(ParticleState& x, const Vec3& a, double h) no
   set_in_plane<Normal>(in_plane<Normal>(x.r) + h * in_plane<Normal>(x.v), x.r);
 }
 
+// Blajer's position correction of one body by dq = (dx, dy, dtheta): the
+// spatial one's body-frame increment about the normal, cayley_increment of
+// rotation.hpp acting on (e0, e_k).
+template <int Normal>
+inline void correct_planar_position(RigidState& x, const Vec3& dq) noexcept {
+  set_in_plane<Normal>(in_plane<Normal>(x.r) + dq.head<2>(), x.r);
+  advance_planar_rotation<Normal>(x.p, dq.z(), 1.0, 1);
+}
+template <int Normal>
+inline void correct_planar_position(ParticleState& x, const Vec3& dq) noexcept {
+  set_in_plane<Normal>(in_plane<Normal>(x.r) + dq.head<2>(), x.r);
+}
+
 // M^-1 F and M^-1 J^T of one body; a particle has no rotational row.
 inline Vec3 inverse_mass_times(const PointMass& b, const PlanarWrench& w) noexcept { return {w.f.x() / b.m, w.f.y() / b.m, 0.0}; }
 inline Vec3 inverse_mass_times(const PlanarInertia& b, const PlanarWrench& w) noexcept {
