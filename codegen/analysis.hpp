@@ -37,6 +37,7 @@ struct ConstraintBlock {
   mbrt::JointFrame frame;
   const TimeFunction* function = nullptr;  // drivers only (points into the Model)
   int holonomic_rows = 0;  // the first rows; the rest act on velocities only (rolling_disk, knife_edge)
+  std::vector<int> spatial_rows;  // planar blocks: the rows of the spatial block they are, in order
 };
 
 struct ForcePlan {
@@ -75,7 +76,7 @@ struct Ali3pPlan {
 
 // The planar specialization (codegen/planar_scene.cpp): whether the scene
 // moves in the world x-y plane, and each constraint block's in-plane rows,
-// which are the block's first rows in the spatial code.
+// a subset of the spatial block's rows (ConstraintBlock::spatial_rows).
 struct PlanarPlan {
   bool applies = false;
   std::string refusal;                       // why not, when it does not apply

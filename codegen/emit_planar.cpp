@@ -137,16 +137,18 @@ void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std
   }
 }
 
-// Each planar block's rows are the first rows of its spatial block; the
-// spatial block's other (out-of-plane) multipliers are zero in a planar scene.
+// Each planar row is a row of its spatial block (ConstraintBlock::spatial_rows);
+// the spatial block's other (out-of-plane) multipliers are zero in a planar scene.
 void Emitter::store_multipliers(std::ostringstream& o) const {
   o << "// (lambda) => (s.lambda): the in-plane rows of every spatial block.\n"
     << "void store_multipliers(const Rows& lambda, State& s) noexcept {\n";
   if (blocks() == 0) o << "  (void)lambda;\n  (void)s;\n";
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& p = a_.planar.constraints[static_cast<size_t>(j)];
-    o << "  s.lambda.segment<" << p.rows << ">(" << first_row(j) << ") = lambda.segment<" << p.rows << ">("
-      << p.first_row << ");  // " << jname(j) << "\n";
+    for (size_t i = 0; i < p.spatial_rows.size(); ++i) {
+      o << "  s.lambda[" << first_row(j) + p.spatial_rows[i] << "] = lambda[" << p.first_row + static_cast<int>(i)
+        << "];  // " << jname(j) << ", row " << p.spatial_rows[i] << "\n";
+    }
   }
   o << "}\n\n";
 }
