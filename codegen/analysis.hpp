@@ -37,6 +37,7 @@ struct ConstraintBlock {
   mbrt::JointFrame frame;
   const TimeFunction* function = nullptr;  // drivers only (points into the Model)
   int holonomic_rows = 0;  // the first rows; the rest act on velocities only (rolling_disk, knife_edge)
+  std::vector<int> spatial_rows;  // planar blocks: the rows of the spatial block they are, in order
 };
 
 struct ForcePlan {
@@ -75,14 +76,13 @@ struct Ali3pPlan {
 
 // The planar specialization (codegen/planar_scene.cpp): whether the scene
 // moves in a plane of world coordinates, the plane's normal (world axis 0, 1
-// or 2), and each constraint block's in-plane rows with the row of the
-// spatial block each one is.
+// or 2), and each constraint block's in-plane rows, a subset of the spatial
+// block's rows (ConstraintBlock::spatial_rows).
 struct PlanarPlan {
   bool applies = false;
   std::string refusal;                       // why not, when it does not apply
   int normal = 2;
   std::vector<ConstraintBlock> constraints;  // same order as Analysis::constraints, planar kernels and rows
-  std::vector<std::vector<int>> spatial_rows;  // per block, the spatial block's row of each planar row
   int constraint_rows = 0;
 };
 

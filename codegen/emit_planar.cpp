@@ -135,7 +135,7 @@ void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std
   }
 }
 
-// Each planar row is one row of its spatial block (PlanarPlan::spatial_rows);
+// Each planar row is one row of its spatial block (ConstraintBlock::spatial_rows);
 // the spatial block's other (out-of-plane) multipliers are zero in a planar scene.
 void Emitter::store_multipliers(std::ostringstream& o) const {
   o << "// (lambda) => (s.lambda): the in-plane rows of every spatial block.\n"
@@ -143,7 +143,7 @@ void Emitter::store_multipliers(std::ostringstream& o) const {
   if (blocks() == 0) o << "  (void)lambda;\n  (void)s;\n";
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& p = a_.planar.constraints[static_cast<size_t>(j)];
-    const std::vector<int>& rows = a_.planar.spatial_rows[static_cast<size_t>(j)];
+    const std::vector<int>& rows = p.spatial_rows;
     bool leading = true;  // the spatial block's first rows, in order
     for (size_t r = 0; r < rows.size(); ++r) leading = leading && rows[r] == static_cast<int>(r);
     if (leading) {

@@ -26,40 +26,80 @@ std::string body_refusal(const Plane& plane, const Body& b) {
   return "";
 }
 
-// Planar kernel and in-plane rows of a joint, each with its row in the
-// spatial block, or a refusal. A joint point off its body's plane through
-// the centre of mass would take out-of-plane reactions (and let a spherical
-// joint tilt the body).
-std::string planar_joint(const Plane& plane, const Joint& j, ConstraintBlock& block, std::vector<int>& spatial_rows) {
-  if ((j.body1 != kGround && !plane.contains(block.frame.s1)) || (j.body2 != kGround && !plane.contains(block.frame.s2))) {
-    return "joint " + j.name + " is off the plane of a body's centre of mass";
+// A joint or driver point off its body's plane through the centre of mass
+// would take out-of-plane reactions (and let a spherical joint tilt the body).
+bool points_in_planes(const Plane& plane, const ConstraintBlock& block) {
+  return (block.body1 == kGround || plane.contains(block.frame.s1)) &&
+         (block.body2 == kGround || plane.contains(block.frame.s2));
+}
+
+// The planar prismatic kernel keeps the rows of the spatial prismatic block
+// (joints.hpp: a1.b2, a1.c2, b1.d, c1.d, b1.c2) that do not involve the
+// normal of the plane. For an axis in a coordinate plane, the triad of
+// complete_triad (analysis.cpp) has b or c along the normal: b = a x z for
+// an axis oblique to x and y, a x y or a x x for one along x or y. Any other
+// triad is refused rather than turned, which would change the spatial step.
+std::string planar_prismatic(const Plane& plane, const Joint& j, ConstraintBlock& block) {
+  if (!plane.contains(j.axis)) return "the axis of joint " + j.name + " is not in the " + plane.name() + " plane";
+  const JointFrame& f = block.frame;
+  const auto normal_and_in_plane = [&](const Eigen::Vector3d& n1, const Eigen::Vector3d& n2, const Eigen::Vector3d& e1,
+                                       const Eigen::Vector3d& e2) {
+    return plane.along_normal(n1) && plane.along_normal(n2) && plane.contains(e1) && plane.contains(e2);
+  };
+  if (normal_and_in_plane(f.c1, f.c2, f.b1, f.b2)) {
+    block.kernel = "planar_prismatic<mbrt::InPlane::b>";
+    block.spatial_rows = {0, 2};
+  } else if (normal_and_in_plane(f.b1, f.b2, f.c1, f.c2)) {
+    block.kernel = "planar_prismatic<mbrt::InPlane::c>";
+    block.spatial_rows = {1, 3};
+  } else {
+    return "the frame of joint " + j.name + " is tilted out of the " + plane.name() + " plane";
   }
+  return "";
+}
+
+// Planar kernel and in-plane rows of a joint, each with its row in the
+// spatial block, or a refusal.
+std::string planar_joint(const Plane& plane, const Joint& j, ConstraintBlock& block) {
+  if (!points_in_planes(plane, block)) return "joint " + j.name + " is off the plane of a body's centre of mass";
   switch (j.type) {
     case JointType::revolute:
       if (!plane.along_normal(j.axis)) return "the axis of joint " + j.name + " is not along " + plane.axis_name();
       [[fallthrough]];
     case JointType::spherical:
       block.kernel = "planar_revolute";
-      block.rows = 2;
-      spatial_rows = {plane.i(), plane.j()};  // of the point coincidence's x, y, z rows
+      block.spatial_rows = {plane.i(), plane.j()};  // of the point coincidence's x, y, z rows
       return "";
     case JointType::distance:
-      if (j.point1[plane.normal] != j.point2[plane.normal]) {
+      if (!plane.contains(j.point2 - j.point1)) {
         return "the points of distance joint " + j.name + " are not in one " + plane.name() + " plane";
       }
       block.kernel = "planar_distance";
-      block.rows = 1;
-      spatial_rows = {0};
+      block.spatial_rows = {0};
       return "";
+    case JointType::prismatic: return planar_prismatic(plane, j, block);
     default: return "joint " + j.name + " is a " + joint_type_name(j.type) + " joint";
   }
+}
+
+// Planar kernel of a driver, or a refusal. A joint_angle or joint_distance
+// driver measures its joint, which planar_joint has taken (a revolute joint
+// about the normal, a prismatic one along the plane), in that joint's frame.
+std::string planar_driver(const Plane& plane, const Driver& d, ConstraintBlock& block) {
+  if (!points_in_planes(plane, block)) return "driver " + d.name + " is off the plane of a body's centre of mass";
+  if (d.type == DriverType::distance && !plane.contains(d.point2 - d.point1)) {
+    return "the points of distance driver " + d.name + " are not in one " + plane.name() + " plane";
+  }
+  block.kernel = "planar_" + block.kernel;
+  block.spatial_rows = {0};
+  return "";
 }
 
 // Loads in the plane, acting in their bodies' planes of motion.
 std::string force_refusal(const Plane& plane, const Force& f, const ForcePlan& p) {
   switch (f.type) {
     case ForceType::spring_damper:
-      if (f.point1[plane.normal] != f.point2[plane.normal] || (f.body1 != kGround && !plane.contains(p.spring.s1)) ||
+      if (!plane.contains(f.point2 - f.point1) || (f.body1 != kGround && !plane.contains(p.spring.s1)) ||
           (f.body2 != kGround && !plane.contains(p.spring.s2))) {
         return "a spring_damper is off the plane of a body's centre of mass";
       }
@@ -73,28 +113,33 @@ std::string force_refusal(const Plane& plane, const Force& f, const ForcePlan& p
 
 // Why the scene does not move in the plane, or "" with plan's blocks filled in.
 std::string refusal(const Plane& plane, const Model& model, const Analysis& a, PlanarPlan& plan) {
-  if (!model.drivers.empty()) return "the scene has drivers";
   for (const ForcePlan& p : a.forces) {
     if (std::string why = force_refusal(plane, model.forces[static_cast<size_t>(p.model_index)], p); !why.empty()) return why;
   }
   for (size_t i = 0; i < model.inputs.size(); ++i) {
     const Input& in = model.inputs[i];
-    if (in.type == InputType::joint_force) return "input " + in.name + " is a joint_force";
-    if (!plane.along_normal(a.inputs[i].axis1)) return "input " + in.name + " is not a torque about " + plane.axis_name();
+    // A joint_force acts along its joint's axis, a torque about it.
+    if (in.type == InputType::joint_force) {
+      if (!plane.contains(a.inputs[i].axis1)) return "input " + in.name + " is not a force in the " + plane.name() + " plane";
+    } else if (!plane.along_normal(a.inputs[i].axis1)) {
+      return "input " + in.name + " is not a torque about " + plane.axis_name();
+    }
   }
   if (model.gravity && !plane.contains(*model.gravity)) return "gravity is not in the " + plane.name() + " plane";
   for (const Body& b : model.bodies) {
     if (std::string why = body_refusal(plane, b); !why.empty()) return why;
   }
-  for (size_t i = 0; i < model.joints.size(); ++i) {
+  const size_t joints = model.joints.size();
+  for (size_t i = 0; i < a.constraints.size(); ++i) {
     ConstraintBlock block = a.constraints[i];
-    std::vector<int> rows;
-    if (std::string why = planar_joint(plane, model.joints[i], block, rows); !why.empty()) return why;
+    const std::string why = i < joints ? planar_joint(plane, model.joints[i], block)
+                                       : planar_driver(plane, model.drivers[i - joints], block);
+    if (!why.empty()) return why;
+    block.rows = static_cast<int>(block.spatial_rows.size());
     block.first_row = plan.constraint_rows;
     block.holonomic_rows = block.rows;
     plan.constraint_rows += block.rows;
     plan.constraints.push_back(block);
-    plan.spatial_rows.push_back(rows);
   }
   plan.normal = plane.normal;
   return "";
@@ -116,7 +161,7 @@ PlanarPlan plan_planar(const Model& model, const Analysis& a) {
   if (!a.specialize.planar) return plan;
   const std::string& scheme = model.solver.scheme;
   if (scheme != "staggered-pcst" && scheme != "baumgarte" && scheme != "blajer") {
-    plan.refusal = "not for scheme " + model.solver.scheme;
+    plan.refusal = "not for scheme " + scheme;
     return plan;
   }
   std::vector<std::string> reasons;

@@ -17,9 +17,13 @@
 #include "a01_spatial.hpp"
 #include "a01_special.hpp"
 #include "analysis.hpp"
+#include "boom_cylinder_planar.hpp"
+#include "boom_cylinder_spatial.hpp"
 #include "chain_10_planar.hpp"
 #include "chain_10_spatial.hpp"
 #include "driven_slider_general.hpp"
+#include "driven_slider_planar.hpp"
+#include "driven_slider_spatial.hpp"
 #include "driven_slider_special.hpp"
 #include "four_bar_ali3p_general.hpp"
 #include "four_bar_ali3p_special.hpp"
@@ -38,6 +42,8 @@
 #include "loaded_four_bar_xz_spatial.hpp"
 #include "loaded_four_bar_yz_planar.hpp"
 #include "loaded_four_bar_yz_spatial.hpp"
+#include "slider_crank_planar.hpp"
+#include "slider_crank_spatial.hpp"
 #include "two_masses_general.hpp"
 #include "two_masses_special.hpp"
 
@@ -188,6 +194,63 @@ TEST_CASE("planar coordinates: the loaded four-bar in the x-z plane moves as the
   }
   CHECK(moved > 0.1);
   CHECK(difference < kRoundOff);
+}
+
+// The state after the comparison's run: the scene must have moved for the comparison to mean anything.
+template <class State, class Step>
+State after_run(State s, Step step) {
+  for (int i = 0; i < kSteps; ++i) REQUIRE(step(s) == mbrt::StepStatus::ok);
+  return s;
+}
+
+TEST_CASE("planar coordinates: a slider-crank driven at the crank (joint_angle driver, prismatic joint) equals the spatial code") {
+  CHECK(applies("slider_crank.yaml", {"planar"}));
+  CHECK(DIFFERENCE_FROM_SPATIAL(slider_crank) < kRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(slider_crank) < kMultiplierRoundOff);
+  // The crank has turned 8 rad, more than a turn: the slider has reached
+  // both dead centres, x = 0.2 and 0.8.
+  namespace m = mbrt::models::slider_crank_planar;
+  double x_min = 1.0, x_max = 0.0;
+  m::State s = m::initial_state();
+  for (int i = 0; i < kSteps; ++i) {
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    x_min = std::min(x_min, s.rigid[2].r.x());
+    x_max = std::max(x_max, s.rigid[2].r.x());
+  }
+  CHECK(x_min < 0.201);
+  CHECK(x_max > 0.799);
+}
+
+TEST_CASE("planar coordinates: the driven slider (joint_distance driver, prismatic joint along x) equals the spatial code") {
+  CHECK(applies("driven_slider.yaml", {"planar"}));
+  CHECK(DIFFERENCE_FROM_SPATIAL(driven_slider) < kRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(driven_slider) < kMultiplierRoundOff);
+  namespace m = mbrt::models::driven_slider_planar;
+  const m::State s = after_run(m::initial_state(), m::step);
+  CHECK(s.rigid[0].r.x() == doctest::Approx(2.0).epsilon(1e-6));  // x = t^2 / 2 at t = 2 s
+}
+
+TEST_CASE("planar coordinates: a boom on a distance driver, a carriage pushed by a joint_force input along it, equal the spatial code") {
+  CHECK(applies("boom_cylinder.yaml", {"planar"}));
+  CHECK(DIFFERENCE_FROM_SPATIAL(boom_cylinder) < kRoundOff);
+  CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(boom_cylinder) < kMultiplierRoundOff);
+  // The boom has turned (from e3 = 0), and the carriage has moved along it,
+  // on the boom's line through the pivot at the origin.
+  namespace m = mbrt::models::boom_cylinder_planar;
+  const m::State s0 = m::initial_state();
+  const m::State s = after_run(s0, m::step);
+  CHECK(std::abs(s.rigid[0].p[3]) > 0.05);
+  CHECK(std::abs(s.rigid[1].r.norm() - s0.rigid[1].r.norm()) > 0.1);
+}
+
+TEST_CASE("planar coordinates refuse a prismatic axis out of the plane and a distance driver across planes") {
+  using namespace mbrt::codegen;
+  Model tilted = load_model(std::string(MBRT_TEST_MODELS) + "/slider_crank.yaml");
+  tilted.joints[3].axis = Eigen::Vector3d(0.6, 0.0, 0.8);
+  CHECK(analyse(tilted).planar.refusal == "the axis of joint rail is not in the x-y plane");
+  Model across = load_model(std::string(MBRT_TEST_MODELS) + "/boom_cylinder.yaml");
+  across.drivers[0].point1.z() = 0.1;
+  CHECK(analyse(across).planar.refusal == "the points of distance driver cylinder are not in one x-y plane");
 }
 
 TEST_CASE("planar coordinates with every other specialization turned off equal the planar step") {

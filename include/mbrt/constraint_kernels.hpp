@@ -71,22 +71,29 @@ inline CarriedDifference difference(const CarriedVector& a, const CarriedVector&
   return {b.x - a.x, b.x_dot - a.x_dot, -a.J, b.J, b.quad - a.quad};
 }
 
-// One scalar constraint row.
-struct ScalarRow {
+// One scalar constraint row over a body's C velocity columns.
+template <int C>
+struct ConstraintRow {
   double phi;
-  Eigen::Matrix<double, 1, 6> J1;
-  Eigen::Matrix<double, 1, 6> J2;
+  Eigen::Matrix<double, 1, C> J1;
+  Eigen::Matrix<double, 1, C> J2;
   double quad;
 };
+using ScalarRow = ConstraintRow<6>;
+
+// The rows below take a CarriedVector and a CarriedDifference, or their
+// planar counterparts (planar.hpp), whose Jacobians have C columns.
 
 // Row: a . b, a carried by body 1, b by body 2 (perpendicularity of two axes).
-inline ScalarRow dot_row(const CarriedVector& a, const CarriedVector& b) noexcept {
+template <class V, int C = decltype(V::J)::ColsAtCompileTime>
+inline ConstraintRow<C> dot_row(const V& a, const V& b) noexcept {
   return {a.x.dot(b.x), b.x.transpose() * a.J, a.x.transpose() * b.J,
           a.quad.dot(b.x) + 2.0 * a.x_dot.dot(b.x_dot) + a.x.dot(b.quad)};
 }
 
 // Row: n . d, n carried by body 1, d = x2 - x1 (point 2 stays in a plane of body 1).
-inline ScalarRow normal_dot_difference_row(const CarriedVector& n, const CarriedDifference& d) noexcept {
+template <class V, class D, int C = decltype(V::J)::ColsAtCompileTime>
+inline ConstraintRow<C> normal_dot_difference_row(const V& n, const D& d) noexcept {
   return {n.x.dot(d.x), d.x.transpose() * n.J + n.x.transpose() * d.J1, n.x.transpose() * d.J2,
           n.quad.dot(d.x) + 2.0 * n.x_dot.dot(d.x_dot) + n.x.dot(d.quad)};
 }
@@ -119,8 +126,8 @@ inline AngleRow relative_angle_row(const BodyPose& p1, const BodyVelocity& v1, c
 // Angle difference wrapped to (-pi, pi].
 inline double wrap_angle(double x) noexcept { return std::remainder(x, 2.0 * 3.14159265358979323846); }
 
-template <int N>
-inline void set_row(ConstraintRows<N>& rows, int i, const ScalarRow& r) noexcept {
+template <int N, int C>
+inline void set_row(ConstraintRows<N, C>& rows, int i, const ConstraintRow<C>& r) noexcept {
   rows.phi[i] = r.phi;
   rows.J1.row(i) = r.J1;
   rows.J2.row(i) = r.J2;

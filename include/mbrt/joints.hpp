@@ -134,8 +134,9 @@ inline ConstraintRows<3> planar(const JointFrame& f, const BodyMotion& m1, const
 // Drivers: one rheonomic row each, phi(q) - f(t) = 0, so phi_t = -f' and
 // quad gains -f''.
 namespace detail {
-inline ConstraintRows<1> driven(const ScalarRow& r, const TimeValue& f) noexcept {
-  ConstraintRows<1> rows;
+template <int C>
+inline ConstraintRows<1, C> driven(const ConstraintRow<C>& r, const TimeValue& f) noexcept {
+  ConstraintRows<1, C> rows;
   set_row(rows, 0, {r.phi, r.J1, r.J2, r.quad - f.ddf});
   rows.phi_t[0] = -f.df;
   return rows;
@@ -146,7 +147,7 @@ inline ConstraintRows<1> driven(const ScalarRow& r, const TimeValue& f) noexcept
 inline ConstraintRows<1> joint_angle_driver(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2,
                                             const TimeValue& target) noexcept {
   const AngleRow turn = relative_angle_row(m1.pose, m1.vel, f.a1, f.b1, f.c1, m2.pose, m2.vel, f.b2);
-  return detail::driven({wrap_angle(turn.theta - target.f), turn.J1, turn.J2, turn.quad}, target);
+  return detail::driven(ScalarRow{wrap_angle(turn.theta - target.f), turn.J1, turn.J2, turn.quad}, target);
 }
 
 // Prescribed displacement of the joint point of body 2 along the axis of body 1, from t = 0.
@@ -157,29 +158,45 @@ inline ConstraintRows<1> joint_distance_driver(const JointFrame& f, const BodyMo
   return detail::driven(r, target);
 }
 
+namespace detail {
+// |x2 - x1| - f(t) from the points' difference d (a CarriedDifference, or
+// planar.hpp's PlanarDifference).
+template <class D, int C = decltype(D::J1)::ColsAtCompileTime>
+inline ConstraintRows<1, C> distance_driven(const D& d, const TimeValue& target) noexcept {
+  const double l = d.x.norm();
+  const auto n = (d.x / l).eval();
+  const double along = n.dot(d.x_dot);
+  return driven(ConstraintRow<C>{l - target.f, n.transpose() * d.J1, n.transpose() * d.J2,
+                                 (d.x_dot.squaredNorm() - along * along) / l + n.dot(d.quad)},
+                target);
+}
+}  // namespace detail
+
 // Prescribed distance |x2 - x1| between a point of each body.
 inline ConstraintRows<1> distance_driver(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2,
                                          const TimeValue& target) noexcept {
-  const CarriedDifference d = detail::joint_points(f, m1, m2);
-  const double l = d.x.norm();
-  const Vec3 n = d.x / l;
-  const double along = n.dot(d.x_dot);
-  return detail::driven({l - target.f, n.transpose() * d.J1, n.transpose() * d.J2,
-                         (d.x_dot.squaredNorm() - along * along) / l + n.dot(d.quad)},
-                        target);
+  return detail::distance_driven(detail::joint_points(f, m1, m2), target);
 }
 
-// Distance: (|x2 - x1|^2 - L^2) / (2 L) = 0, which has units of length and
-// equals |x2 - x1| - L to first order (1 row).
-inline ConstraintRows<1> distance(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
-  ConstraintRows<1> rows;
-  const CarriedDifference d = detail::joint_points(f, m1, m2);
-  const double inv_l = 1.0 / f.length;
-  rows.phi[0] = 0.5 * inv_l * (d.x.squaredNorm() - f.length * f.length);
+namespace detail {
+// The distance row from the points' difference d (a CarriedDifference, or
+// planar.hpp's PlanarDifference).
+template <class D, int C = decltype(D::J1)::ColsAtCompileTime>
+inline ConstraintRows<1, C> distance_rows(const D& d, double length) noexcept {
+  ConstraintRows<1, C> rows;
+  const double inv_l = 1.0 / length;
+  rows.phi[0] = 0.5 * inv_l * (d.x.squaredNorm() - length * length);
   rows.J1.row(0) = inv_l * d.x.transpose() * d.J1;
   rows.J2.row(0) = inv_l * d.x.transpose() * d.J2;
   rows.quad[0] = inv_l * (d.x_dot.squaredNorm() + d.x.dot(d.quad));
   return rows;
+}
+}  // namespace detail
+
+// Distance: (|x2 - x1|^2 - L^2) / (2 L) = 0, which has units of length and
+// equals |x2 - x1| - L to first order (1 row).
+inline ConstraintRows<1> distance(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  return detail::distance_rows(detail::joint_points(f, m1, m2), f.length);
 }
 
 }  // namespace mbrt

@@ -50,8 +50,7 @@ struct PlanarInertia {
   double J;
 };
 
-// phi_t stays zero: planar scenes have no drivers. It is stacked only where
-// the no_drivers specialization is turned off, as in the spatial step.
+// N rows over (vx, vy, omega_z) of each body; phi_t is the drivers' -f'.
 template <int N>
 using PlanarRows = ConstraintRows<N, 3>;
 
@@ -201,9 +200,9 @@ inline Eigen::Matrix<double, 3, N> inverse_mass_times_transpose(const PlanarIner
   return x;
 }
 
-// Point with body-frame offset s (its x, y) from the COM: x = r + R s,
-// x_dot = v + omega R perp(s), x_ddot = a + omega' R perp(s) - omega^2 R s,
-// perp(s) = (-s_y, s_x): carried_point of constraint_kernels.hpp in the plane.
+// A point or a direction carried by a body, with its first derivative, its
+// Jacobian with respect to that body's u and its second derivative at zero
+// acceleration: CarriedVector of constraint_kernels.hpp in the plane.
 struct PlanarPoint {
   Vec2 x;
   Vec2 x_dot;
@@ -211,14 +210,27 @@ struct PlanarPoint {
   Vec2 quad;
 };
 
-inline PlanarPoint planar_point(const PlanarMotion& m, const Vec3& s) noexcept {
-  const Vec2 r_perp = m.pose.R * Vec2(-s.y(), s.x());
-  const Vec2 r_s = m.pose.R * s.head<2>();
+// Direction with body-frame components d (its x, y): x = R d,
+// x_dot = omega R perp(d), x_ddot = omega' R perp(d) - omega^2 R d,
+// perp(d) = (-d_y, d_x).
+inline PlanarPoint planar_direction(const PlanarMotion& m, const Vec3& d) noexcept {
+  const Vec2 r_perp = m.pose.R * Vec2(-d.y(), d.x());
+  const Vec2 r_d = m.pose.R * d.head<2>();
   PlanarPoint p;
-  p.x = m.pose.r + r_s;
-  p.x_dot = m.vel.v + m.vel.w * r_perp;
-  p.J << 1.0, 0.0, r_perp.x(), 0.0, 1.0, r_perp.y();
-  p.quad = -(m.vel.w * m.vel.w) * r_s;
+  p.x = r_d;
+  p.x_dot = m.vel.w * r_perp;
+  p.J << 0.0, 0.0, r_perp.x(), 0.0, 0.0, r_perp.y();
+  p.quad = -(m.vel.w * m.vel.w) * r_d;
+  return p;
+}
+
+// Point with body-frame offset s (its x, y) from the COM: x = r + R s,
+// x_dot = v + omega R perp(s), x_ddot = a + omega' R perp(s) - omega^2 R s.
+inline PlanarPoint planar_point(const PlanarMotion& m, const Vec3& s) noexcept {
+  PlanarPoint p = planar_direction(m, s);
+  p.x += m.pose.r;
+  p.x_dot += m.vel.v;
+  p.J.leftCols<2>().setIdentity();
   return p;
 }
 
@@ -251,25 +263,81 @@ inline PlanarSpringDamperForce planar_spring_damper(const SpringDamper& e, const
   return out;
 }
 
+// One row over (vx, vy, omega_z) of each body.
+using PlanarRow = ConstraintRow<3>;
+
+// Difference x2 - x1 of the joint points, each keeping its own body's
+// Jacobian: CarriedDifference of joint_points (joints.hpp) in the plane.
+struct PlanarDifference {
+  Vec2 x;
+  Vec2 x_dot;
+  Eigen::Matrix<double, 2, 3> J1;  // of -x1, body 1
+  Eigen::Matrix<double, 2, 3> J2;  // of x2, body 2
+  Vec2 quad;
+};
+
+inline PlanarDifference planar_joint_points(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2) noexcept {
+  const PlanarPoint a = planar_point(m1, f.s1), b = planar_point(m2, f.s2);
+  return {b.x - a.x, b.x_dot - a.x_dot, -a.J, b.J, b.quad - a.quad};
+}
+
 // Revolute about z (and spherical, whose other rotations the scene leaves at
 // rest): the joint points coincide in x and y, rows 0 and 1 of the spatial
 // joint.
 inline PlanarRows<2> planar_revolute(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2) noexcept {
-  const PlanarPoint a = planar_point(m1, f.s1), b = planar_point(m2, f.s2);
-  return {b.x - a.x, -a.J, b.J, b.quad - a.quad};
+  const PlanarDifference d = planar_joint_points(f, m1, m2);
+  return {d.x, d.J1, d.J2, d.quad};
 }
 
 // distance of joints.hpp with both points in one plane z = const.
 inline PlanarRows<1> planar_distance(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2) noexcept {
-  const PlanarPoint a = planar_point(m1, f.s1), b = planar_point(m2, f.s2);
-  const Vec2 d = b.x - a.x, d_dot = b.x_dot - a.x_dot;
-  const double inv_l = 1.0 / f.length;
-  PlanarRows<1> rows;
-  rows.phi[0] = 0.5 * inv_l * (d.squaredNorm() - f.length * f.length);
-  rows.J1.row(0) = -inv_l * d.transpose() * a.J;
-  rows.J2.row(0) = inv_l * d.transpose() * b.J;
-  rows.quad[0] = inv_l * (d_dot.squaredNorm() + d.dot(b.quad - a.quad));
+  return detail::distance_rows(planar_joint_points(f, m1, m2), f.length);
+}
+
+// Which vector of a prismatic joint's triad (a, b, c) lies in the plane with
+// the axis a; the other one is the plane's normal (codegen/planar_scene.cpp).
+enum class InPlane { b, c };
+
+// prismatic of joints.hpp with its axis in the plane: its two rows that do
+// not involve the normal, a1 . e2 (no rotation about the normal) and e1 . d
+// (no offset across the axis), e the triad vector in the plane. They are the
+// spatial rows 0 and 2 for e = b, 1 and 3 for e = c; the other three stay
+// zero in the plane.
+template <InPlane E>
+inline PlanarRows<2> planar_prismatic(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2) noexcept {
+  const Vec3& e1 = E == InPlane::b ? f.b1 : f.c1;
+  const Vec3& e2 = E == InPlane::b ? f.b2 : f.c2;
+  PlanarRows<2> rows;
+  set_row(rows, 0, dot_row(planar_direction(m1, f.a1), planar_direction(m2, e2)));
+  set_row(rows, 1, normal_dot_difference_row(planar_direction(m1, e1), planar_joint_points(f, m1, m2)));
   return rows;
+}
+
+// Drivers: detail::driven of joints.hpp adds phi_t = -f' and -f'' to quad.
+
+// joint_angle_driver of joints.hpp on a revolute joint about +-z: the angle
+// from the in-plane b and c of its triad. The axis a = (0, 0, a_z) keeps its
+// direction, so theta' = a_z (omega2 - omega1) and quad is zero.
+inline PlanarRows<1> planar_joint_angle_driver(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2,
+                                               const TimeValue& target) noexcept {
+  const Vec2 b2 = m2.pose.R * f.b2.head<2>();
+  const double theta = std::atan2((m1.pose.R * f.c1.head<2>()).dot(b2), (m1.pose.R * f.b1.head<2>()).dot(b2));
+  const double a_z = f.a1.z();
+  return detail::driven(PlanarRow{wrap_angle(theta - target.f), {0.0, 0.0, -a_z}, {0.0, 0.0, a_z}, 0.0}, target);
+}
+
+// joint_distance_driver of joints.hpp on a prismatic joint whose axis lies in the plane.
+inline PlanarRows<1> planar_joint_distance_driver(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2,
+                                                  const TimeValue& target) noexcept {
+  PlanarRow r = normal_dot_difference_row(planar_direction(m1, f.a1), planar_joint_points(f, m1, m2));
+  r.phi -= target.f;
+  return detail::driven(r, target);
+}
+
+// distance_driver of joints.hpp with both points in one plane z = const.
+inline PlanarRows<1> planar_distance_driver(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2,
+                                            const TimeValue& target) noexcept {
+  return detail::distance_driven(planar_joint_points(f, m1, m2), target);
 }
 
 }  // namespace mbrt
