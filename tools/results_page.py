@@ -125,7 +125,7 @@ def work_precision(out):
     paragraph(out,
         "Every mbrt scheme at 4 step sizes and every peer integrator at 7, run alternately in one "
         "process (the fastest of the rounds kept), each problem at the euler_updates its line in "
-        "timing/CMakeLists.txt lists (several give curves named `SCHEME euK`; this run: one each). Error: the largest distance of the observed point "
+        "timing/CMakeLists.txt lists (several give curves named `SCHEME euK`, as the heavy top's 4 and 1). Error: the largest distance of the observed point "
         "from an independent reference (minimal-coordinate equations by RK4 at 1e-5 s, the closed-form "
         "Lagrange top, the Test Set for IVP Solvers' solution for Andrews' squeezer at t = 0.03 s), see "
         "timing/problems.cpp. On a03_andrews the observed point is the crank's joint F, 7 mm from its "
