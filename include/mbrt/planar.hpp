@@ -89,16 +89,22 @@ inline PlanarVelocity planar_velocity_of(const ParticleState& s) noexcept {
 inline PlanarPose planar_ground_pose() noexcept { return {Vec2::Zero(), Mat2::Identity()}; }
 inline PlanarVelocity planar_ground_velocity() noexcept { return {Vec2::Zero(), 0.0}; }
 
+// (x_i, x_j, rotational) of a body's translational vector and the
+// rotational component about the normal.
+template <int Normal>
+inline Vec3 planar_vector(const Vec3& translational, double rotational) noexcept {
+  const Vec2 x = in_plane<Normal>(translational);
+  return {x.x(), x.y(), rotational};
+}
+
 // u = (v_i, v_j, omega_k) of a body, read from and written to the State.
 template <int Normal>
 inline Vec3 planar_velocities(const RigidState& s) noexcept {
-  const Vec2 v = in_plane<Normal>(s.v);
-  return {v.x(), v.y(), s.w[Normal]};
+  return planar_vector<Normal>(s.v, s.w[Normal]);
 }
 template <int Normal>
 inline Vec3 planar_velocities(const ParticleState& s) noexcept {
-  const Vec2 v = in_plane<Normal>(s.v);
-  return {v.x(), v.y(), 0.0};
+  return planar_vector<Normal>(s.v, 0.0);
 }
 template <int Normal>
 inline void set_planar_velocities(const Vec3& u, RigidState& s) noexcept {
@@ -111,13 +117,11 @@ inline void set_planar_velocities(const Vec3& u, ParticleState& s) noexcept {
 }
 template <int Normal>
 inline Vec3 planar_accelerations(const RigidAcceleration& a) noexcept {
-  const Vec2 x = in_plane<Normal>(a.a);
-  return {x.x(), x.y(), a.alpha[Normal]};
+  return planar_vector<Normal>(a.a, a.alpha[Normal]);
 }
 template <int Normal>
 inline Vec3 planar_accelerations(const Vec3& particle) noexcept {
-  const Vec2 x = in_plane<Normal>(particle);
-  return {x.x(), x.y(), 0.0};
+  return planar_vector<Normal>(particle, 0.0);
 }
 template <int Normal>
 inline void set_planar_accelerations(const Vec3& u, RigidAcceleration& a) noexcept {
