@@ -307,7 +307,9 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
       plan.principal_axes = specialize.principal_axes && off.cwiseAbs().maxCoeff() == 0.0;
       const Eigen::Vector3d d = b.inertia.diagonal();
       plan.isotropic = specialize.isotropic && d.x() == d.y() && d.y() == d.z() && off.cwiseAbs().maxCoeff() == 0.0;
-      if (!plan.isotropic) a.velocity_dependent_forces = plan.loaded = true;  // gyroscopic torque
+      // ali3p applies the gyroscopic torque as a load; the staggered schemes
+      // carry it in the free rotation of their explicit stage.
+      if (!plan.isotropic && model.solver.scheme == "ali3p") a.velocity_dependent_forces = plan.loaded = true;
     }
     a.bodies.push_back(plan);
   }

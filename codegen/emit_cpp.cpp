@@ -86,6 +86,10 @@ void Emitter::constants(std::ostringstream& o) const {
   o << "constexpr double h = kStep;\n"
     << "constexpr int kStages = " << stages() << ";  // implicit stages per step\n"
     << "constexpr double kRegularization = " << num(a_.regularization) << ";  // added to diag(S)\n";
+  if (rattle()) {
+    o << "constexpr int kPositionIterations = 1;  // Newton steps of the position stage\n"
+      << "constexpr int kNewtonSolves = 3;  // solves per Newton step (defect correction)\n";
+  }
   switch (scheme_kind()) {
     case Scheme::pcst:
     case Scheme::nps:
@@ -115,8 +119,10 @@ void Emitter::constants(std::ostringstream& o) const {
       o << "const mbrt::PrincipalInertia " << mass_of(static_cast<int>(i)) << "{" << num(b.mass) << ", "
         << vec3(b.inertia.diagonal()) << "};\n";
     } else {
+      const PrincipalFrame f = principal_frame(b.inertia);
       o << "const mbrt::FullInertia " << mass_of(static_cast<int>(i)) << "{" << num(b.mass) << ", "
-        << mat3(b.inertia) << ", " << mat3(b.inertia.inverse()) << "};\n";
+        << mat3(b.inertia) << ", " << mat3(b.inertia.inverse()) << ",\n    " << vec3(f.moments) << ", "
+        << vec4(f.axes) << "};\n";
     }
     if (folded_weights()) {
       o << "const mbrt::Vec3 " << weight_of(static_cast<int>(i)) << " = " << vec3(b.mass * *m_.gravity) << ";\n";
@@ -273,14 +279,15 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
 
 void Emitter::loads_stage(std::ostringstream& o) const {
   o << "// (k" << (has_inputs() ? ", u" : "") << ") => (l): applied forces (world) and torques (body axes) per body,\n"
-    << "// gyroscopic torques" << (has_inputs() ? " and inputs" : "") << " included, and the elastic energy stored.\n"
+    << "// " << (gyroscopic_loads() && any_gyroscopic() ? "gyroscopic torques " : "")
+    << (has_inputs() ? "inputs " : "") << "included, and the elastic energy stored.\n"
     << "void applied_loads(const Kinematics& k, " << (has_inputs() ? "const Inputs& u, " : "") << "Loads& l) noexcept {\n"
     << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const BodyPlan& p = a_.bodies[i];
     if (folded_weights()) o << "  l.w[" << i << "].f += " << weight_of(static_cast<int>(i)) << ";\n";
     else if (a_.gravity) o << "  l.w[" << i << "].f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
-    if (p.rigid && !p.isotropic && !planar_) {  // planar: omega along the normal, a principal axis
+    if (gyroscopic(static_cast<int>(i)) && gyroscopic_loads()) {
       o << "  l.w[" << i << "].tau += mbrt::gyroscopic_torque(" << mass_of(static_cast<int>(i)) << ", k.vel[" << i
         << "].w);\n";
     }
@@ -375,17 +382,21 @@ void Emitter::factorization(std::ostringstream& o) const {
   // ali3p factorizes S with a different diagonal shift for its tangent and
   // its projections; the other schemes add kRegularization.
   const bool shifted = scheme_kind() == Scheme::ali3p;
-  o << "// (c.rows_*) => (c.mbt_*, c.L_*): M^-1 B^T, then S block by block in\n"
-    << "// elimination order (" << a_.pattern.fill_blocks << " fill blocks); false if a pivot is not positive.\n"
-    << "bool factorize(ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
-    << ") noexcept {\n  bool positive = true;\n";
-  if (shifted && blocks() == 0) o << "  (void)shift;\n";
+  o << "// (c.rows_*) => (c.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.\n"
+    << "void constraint_directions(ConstraintSystem& c) noexcept {\n";
+  if (blocks() == 0) o << "  (void)c;\n";
   for (int ji = 0; ji < blocks(); ++ji) {
     for (int b : moving_bodies(ji)) {
       o << "  " << mbt(ji, b) << " = mbrt::inverse_mass_times_transpose(" << mass_of(b) << ", c.rows_" << jname(ji)
         << "." << side(ji, b) << ");\n";
     }
   }
+  o << "}\n\n"
+    << "// (c.rows_*) => (c.mbt_*, c.L_*): M^-1 B^T, then S block by block in\n"
+    << "// elimination order (" << a_.pattern.fill_blocks << " fill blocks); false if a pivot is not positive.\n"
+    << "bool factorize(ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
+    << ") noexcept {\n  bool positive = true;\n  constraint_directions(c);\n";
+  if (shifted && blocks() == 0) o << "  (void)shift;\n";
   const auto& order = a_.pattern.order;
   const auto& lower = a_.pattern.lower;
   auto in_lower = [&](int j, int i) {
@@ -647,15 +658,39 @@ void Emitter::reactions_function(std::ostringstream& o) const {
   o << "}\n\n";
 }
 
+void Emitter::gyroscopic_accelerations_function(std::ostringstream& o) const {
+  o << "// (s) => (J^-1 (-w x J w)) per body: the gyroscopic accelerations, which the\n"
+    << "// explicit stage's free rotation applies and the multipliers must balance.\n"
+    << "BodyVectors gyroscopic_accelerations(const State& s) noexcept {\n  BodyVectors g;\n";
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    if (!gyroscopic(i)) {
+      o << "  g[" << i << "].setZero();\n";
+      continue;
+    }
+    o << "  g[" << i << "] << mbrt::Vec3::Zero(), mbrt::inverse_inertia_times(" << mass_of(i)
+      << ", mbrt::gyroscopic_torque(" << mass_of(i) << ", " << state_of(i) << ".w));  // " << body(i).name << "\n";
+  }
+  o << "  return g;\n}\n\n";
+}
+
 void Emitter::constraint_forces_function(std::ostringstream& o, const std::string& stabilization) const {
   // Planar multipliers go to their rows of the spatial s.lambda at the end.
   const std::string lambda = planar_ ? "lambda" : "s.lambda";
+  // The multipliers balance the gyroscopic accelerations too; the stored
+  // accelerations, which the next half kick applies, leave them out.
+  const bool gyro = any_gyroscopic() && !gyroscopic_loads();
+  if (gyro) gyroscopic_accelerations_function(o);
   o << "void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {\n"
-    << (stabilization.empty() ? "  (void)phi;\n" : "") << "  BodyVectors a = free_accelerations(l);\n"
-    << "  " << (planar_ ? "Rows " : "") << lambda << " = jacobian_times(c, a) + stacked_quad(c)"
+    << (stabilization.empty() ? "  (void)phi;\n" : "") << "  BodyVectors a = free_accelerations(l);\n";
+  if (gyro) {
+    o << "  const BodyVectors g = gyroscopic_accelerations(s);\n"
+      << "  for (int b = 0; b < kBodies; ++b) a[b] += g[b];\n";
+  }
+  o << "  " << (planar_ ? "Rows " : "") << lambda << " = jacobian_times(c, a) + stacked_quad(c)"
     << (stabilization.empty() ? "" : " +\n             " + stabilization) << ";\n  solve(c, " << lambda
-    << ");\n  subtract_constraint_forces(c, " << lambda << ", 1.0, a);\n  set_accelerations(a, s);\n"
-    << (planar_ ? "  store_multipliers(lambda, s);\n" : "") << "}\n\n";
+    << ");\n  subtract_constraint_forces(c, " << lambda << ", 1.0, a);\n";
+  if (gyro) o << "  for (int b = 0; b < kBodies; ++b) a[b] -= g[b];\n";
+  o << "  set_accelerations(a, s);\n" << (planar_ ? "  store_multipliers(lambda, s);\n" : "") << "}\n\n";
 }
 
 GeneratedCode emit_cpp(const Model& model, const Analysis& analysis) { return Emitter(model, analysis).run(); }

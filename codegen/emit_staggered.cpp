@@ -20,31 +20,57 @@ std::string Emitter::stabilization_term() const {
 }
 
 void Emitter::explicit_stage_function(std::ostringstream& o) const {
-  o << R"(// (s, accelerations at t) => (s): explicit stage, central difference.
-// Half kick of the velocities, then positions and Euler parameters to t + h
-// with the half-step velocities (docs/staggered-pcst.md, eqs. 1-3).
-void explicit_stage(State& s) noexcept {
+  o << R"(// (s, accelerations at t) => (s): half kick of the velocities (central
+// difference, docs/staggered-pcst.md eq. 1).
+void kick(State& s) noexcept {
   for (int b = 0; b < kRigidBodies; ++b) {
-    mbrt::RigidState& x = s.rigid[b];
-    x.v += (0.5 * h) * s.rigid_acceleration[b].a;
-    x.w += (0.5 * h) * s.rigid_acceleration[b].alpha;
-    x.r += h * x.v;
-    x.p = mbrt::advance_euler_parameters(x.p, x.w, h, kEulerUpdates);
+    s.rigid[b].v += (0.5 * h) * s.rigid_acceleration[b].a;
+    s.rigid[b].w += (0.5 * h) * s.rigid_acceleration[b].alpha;
   }
-  for (int b = 0; b < kParticles; ++b) {
-    mbrt::ParticleState& x = s.particle[b];
-    x.v += (0.5 * h) * s.particle_acceleration[b];
-    x.r += h * x.v;
+  for (int b = 0; b < kParticles; ++b) s.particle[b].v += (0.5 * h) * s.particle_acceleration[b];
+}
+
+// (s) => (s): positions to t + h with the half-step velocities (eq. 2), and
+// each body's torque-free rotation over h, which carries its gyroscopic
+// torque (eq. 3; docs/stability.md).
+void drift(State& s) noexcept {
+  for (int b = 0; b < kRigidBodies; ++b) s.rigid[b].r += h * s.rigid[b].v;
+  for (int b = 0; b < kParticles; ++b) s.particle[b].r += h * s.particle[b].v;
+)";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    if (!plan(static_cast<int>(i)).rigid) continue;
+    const std::string st = state_of(static_cast<int>(i));
+    if (spherical_inertia(static_cast<int>(i))) {
+      o << "  " << st << ".p = mbrt::advance_euler_parameters(" << st << ".p, " << st
+        << ".w, h, kEulerUpdates);  // " << body(static_cast<int>(i)).name << ": spherical inertia, w constant\n";
+    } else {
+      o << "  mbrt::free_rotation(" << mass_of(static_cast<int>(i)) << ", " << st << ".p, " << st
+        << ".w, h, kEulerUpdates);\n";
+    }
   }
-  s.t += h;
+  o << "  s.t += h;\n}\n\n";
+  if (rattle()) {
+    o << R"(// (from) => (s): positions and time of another state.
+void set_positions(const State& from, State& s) noexcept {
+  for (int b = 0; b < kRigidBodies; ++b) {
+    s.rigid[b].r = from.rigid[b].r;
+    s.rigid[b].p = from.rigid[b].p;
+  }
+  for (int b = 0; b < kParticles; ++b) s.particle[b].r = from.particle[b].r;
+  s.t = from.t;
 }
 
 )";
+  } else {
+    o << "// (s, accelerations at t) => (s): the explicit stage.\nvoid explicit_stage(State& s) noexcept {\n"
+      << "  kick(s);\n  drift(s);\n}\n\n";
+  }
 }
 
 void Emitter::staggered_stages(std::ostringstream& o) const {
   if (planar_) planar_explicit_stage(o);
   else explicit_stage_function(o);
+  if (rattle()) position_stage(o);
   if (scheme_kind() == Scheme::nps) {
     nps_stages(o);
     return;
@@ -124,14 +150,72 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
   }
 }
 
+void Emitter::position_stage(std::ostringstream& o) const {
+  o << R"(// (c0, c, u_kick, last_good) => (s, c.rows_*): the position stage. The
+// first half kick's constraint forces act along M^-1 B(q(t))^T; their
+// multipliers are corrected so that the drift lands on Phi(q(t + h)) = 0
+// (RATTLE's position step, Andersen 1983, J. Comput. Phys. 52, eq. 2.6;
+// Leimkuhler and Skeel 1994, J. Comput. Phys. 112). Newton's matrix
+// B(q*) M^-1 B(q(t))^T is not symmetric; its system is solved by defect
+// correction on the factor of S(q*) at the first drift (docs/stability.md).
+// Taking the corrections along B(q(t))^T, not B(q(t + h))^T, is what keeps
+// the energy of fast-turning bodies bounded.
+void position_stage(const ConstraintSystem& c0, ConstraintSystem& c, BodyVectors& u_kick, const State& last_good,
+                    Kinematics& k, State& s) noexcept {
+  for (int i = 0; i < kPositionIterations; ++i) {
+    const Rows phi = stacked_phi(c);
+    Rows x = phi;
+    solve(c, x);
+    for (int j = 1; j < kNewtonSolves; ++j) {
+      BodyVectors d;
+      for (auto& v : d) v.setZero();
+      subtract_constraint_forces(c0, x, -1.0, d);
+      Rows r = phi - jacobian_times(c, d);
+      solve(c, r);
+      x += r;
+    }
+    subtract_constraint_forces(c0, x, 1.0 / h, u_kick);
+    set_positions(last_good, s);
+    set_velocities(u_kick, s);
+    drift(s);
+    kinematics(s, k);
+    if (i + 1 < kPositionIterations) constraint_rows(k, s.t, c);
+  }
+}
+
+)";
+}
+
 void Emitter::staggered_step(std::ostringstream& o) const {
+  const bool rattle = this->rattle();
   o << R"(mbrt::StepStatus step(State& s) noexcept {
   const State last_good = s;
   const BodyVectors a_old = accelerations_of(s);
-  explicit_stage(s);
+)";
+  if (rattle) {
+    o << R"(  // Directions of the first half kick's constraint forces, at q(t).
+  Kinematics k;
+  kinematics(s, k);
+  ConstraintSystem c0;
+  constraint_rows(k, s.t, c0);
+  constraint_directions(c0);
+  kick(s);
+  BodyVectors u_kick = generalized_velocities(s);
+  drift(s);
+
+  // Constraint terms at the drifted positions, factorized once per step; the
+  // position stage moves the positions onto the constraints and keeps the factor.
+  kinematics(s, k);
+  ConstraintSystem c;
+  constraint_rows(k, s.t, c);
+  bool positive = factorize(c);
+  position_stage(c0, c, u_kick, last_good, k, s);
   const BodyVectors u_half = generalized_velocities(s);
 
 )";
+  } else {
+    o << "  explicit_stage(s);\n  const BodyVectors u_half = generalized_velocities(s);\n\n";
+  }
   if (scheme_kind() == Scheme::pcst || scheme_kind() == Scheme::nps) {
     // staggered-nps eliminates the tree's rows and factorizes the cut rows
     // where staggered-pcst factorizes S; the stages are the same.
@@ -141,19 +225,15 @@ void Emitter::staggered_step(std::ostringstream& o) const {
                   (nps_cuts() ? ";\n  positive = factorize_cut(c, t) && positive" : "")
             : "bool positive = factorize(c)";
     const std::string system = nps ? "c, t" : "c";
-    o << R"(  // Constraint terms at the new positions, factorized once per step. The
-  // quadratic terms are taken at the predicted next half-step velocity
-  // u_half + h a_old, which the next explicit stage will drift with.
-  Kinematics k;
-  kinematics(s, k);
-  BodyVectors u = u_half;
+    o << R"(  // Constraint terms at the new positions. The quadratic terms are taken at
+  // the predicted next half-step velocity u_half + h a_old, which the next
+  // explicit stage will drift with.
+)" << (rattle ? "" : "  Kinematics k;\n  kinematics(s, k);\n") << R"(  BodyVectors u = u_half;
   for (int b = 0; b < kBodies; ++b) u[b] += h * a_old[b];
   set_velocities(u, s);
   k.vel = velocities_of(s);
-  ConstraintSystem c;
-  constraint_rows(k, s.t, c);
-  )" << factorize << R"(;
-
+)" << (rattle ? "" : "  ConstraintSystem c;\n") << R"(  constraint_rows(k, s.t, c);
+)" << (rattle ? "  constraint_directions(c);  // the factor stays that of the first drift\n" : "  " + factorize + ";\n") << R"(
   // Implicit stages: the first evaluates velocity-dependent loads at the
   // predicted end-of-step velocities u_half + h/2 a_old, the next ones at the
   // last result.

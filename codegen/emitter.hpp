@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "emit_cpp.hpp"
+#include "principal_frame.hpp"
 #include "planar_scene.hpp"
 
 namespace mbrt::codegen {
@@ -92,6 +93,27 @@ class Emitter {
   int first_row(int j) const { return block(j).first_row; }
   std::string jname(int j) const { return block(j).name; }
 
+  // Equal principal moments: w stays constant in a torque-free rotation. A
+  // property of the body, not a specialization, so the step's arithmetic is the
+  // same with or without specializations.
+  bool spherical_inertia(int i) const {
+    const Eigen::Matrix3d& j = body(i).inertia;
+    return j == Eigen::Matrix3d(Eigen::Vector3d::Constant(j(0, 0)).asDiagonal());
+  }
+  // Bodies whose gyroscopic torque the step evaluates (not the isotropic ones
+  // when specialized; a planar scene turns about a principal axis and has none).
+  bool gyroscopic(int i) const { return plan(i).rigid && !plan(i).isotropic && !planar_; }
+  // ali3p applies the gyroscopic torque as a load; the staggered schemes rotate
+  // the bodies freely in the explicit stage and need the torque only in the
+  // multipliers' right-hand side (docs/stability.md).
+  bool gyroscopic_loads() const { return scheme_kind() == Scheme::ali3p; }
+  bool any_gyroscopic() const {
+    for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i)
+      if (gyroscopic(i)) return true;
+    return false;
+  }
+  void gyroscopic_accelerations_function(std::ostringstream& o) const;
+
   std::string state_of(int i) const {
     return plan(i).rigid ? "s.rigid[" + std::to_string(plan(i).slot) + "]" : "s.particle[" + std::to_string(plan(i).slot) + "]";
   }
@@ -161,6 +183,9 @@ class Emitter {
   // emit_staggered.cpp
   std::string stabilization_term() const;  // of S lambda = B M^-1 F + quad + stabilization
   void explicit_stage_function(std::ostringstream& o) const;
+  // staggered-pcst's position stage (RATTLE's position step) after the drift.
+  bool rattle() const { return scheme_kind() == Scheme::pcst && blocks() > 0 && !planar_; }
+  void position_stage(std::ostringstream& o) const;
   void staggered_stages(std::ostringstream& o) const;
   void staggered_step(std::ostringstream& o) const;
 

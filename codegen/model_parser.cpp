@@ -395,6 +395,15 @@ Eigen::Matrix3d read_inertia(const Value& v) {
     fail(v, "inertia is not positive definite (smallest eigenvalue " + format_number(smallest) +
                 ")");
   }
+  // A rigid body's principal moments obey the triangle inequality
+  // (I3 = integral of x^2 + y^2 <= I1 + I2); a larger one belongs to no body
+  // and makes the gyroscopic dynamics unphysical.
+  const Eigen::Vector3d m = eig.eigenvalues();
+  if (m(2) > (m(0) + m(1)) * (1.0 + 1e-9)) {
+    fail(v, "inertia belongs to no rigid body: its largest principal moment " + format_number(m(2)) +
+                " exceeds the sum of the other two (" + format_number(m(0)) + " + " + format_number(m(1)) +
+                "); a thin rod or plate has at most equality");
+  }
   return j;
 }
 

@@ -649,6 +649,24 @@ bodies:
                     "bodies[0].inertia", 3, "smallest eigenvalue 0");
 }
 
+TEST_CASE("an inertia no rigid body can have (one principal moment above the sum of the others) is rejected") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - name: wrist
+    mass: 0.3
+    inertia: [0.1, 0.1, 5.0]
+)",
+                    "bodies[0].inertia", 5, "largest principal moment 5 exceeds the sum of the other two");
+  // Rotated into products, the principal moments are the same: 0.1, 0.1 and 0.3.
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [0.2, 0.2, 0.1, 0.1, 0, 0]}
+)",
+                    "bodies[0].inertia", 3, "exceeds the sum of the other two");
+  // A thin rod and a thin plate are at the limit, and accepted.
+  CHECK_FALSE(failure_of("name: m\nbodies:\n  - {name: a, mass: 1, inertia: [0.5, 0.5, 1.0]}\n").thrown);
+}
+
 TEST_CASE("Euler parameters that are not unit are rejected saying the norm") {
   CHECK_MODEL_ERROR(R"(name: m
 bodies:

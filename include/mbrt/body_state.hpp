@@ -47,7 +47,7 @@ inline BodyVelocity ground_velocity() noexcept { return {Vec3::Zero(), Vec3::Zer
 
 // Mass properties, one type per specialization: the inverse-mass products
 // skip the rotational part for particles and the off-diagonal inertia
-// products for principal-axis bodies (DESIGN section 6).
+// products for principal-axis bodies.
 struct PointMass {
   double m;
 };
@@ -61,6 +61,8 @@ struct FullInertia {
   double m;
   Mat3 J;
   Mat3 J_inv;
+  Vec3 principal_moments;
+  EulerParameters principal_axes;  // principal to body axes (the free rotation works in them)
 };
 
 inline Vec3 inertia_times(const PrincipalInertia& b, const Vec3& w) noexcept { return b.J.cwiseProduct(w); }

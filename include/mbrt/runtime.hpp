@@ -5,6 +5,7 @@
 
 #include "mbrt/dense_cholesky.hpp"
 #include "mbrt/forces.hpp"
+#include "mbrt/free_rotation.hpp"
 #include "mbrt/joint_coordinates.hpp"
 #include "mbrt/joints.hpp"
 #include "mbrt/mass_properties.hpp"

@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""Print an mbrt model of a spatial stress case: a chain, an arm or a spinning body.
+
+Usage:
+  tools/make_spatial.py chain N [--joint spherical|revolute] [--name NAME]
+  tools/make_spatial.py arm N [--name NAME]          (N = 6 or 7)
+  tools/make_spatial.py spinner [--name NAME]
+
+Every model is conservative (gravity, no damping), so its energy must stay put.
+
+chain: N slender rods (0.1 kg, 0.25 m, radius 0.01 m: axial inertia 200 times
+  smaller than the transverse one) hanging from the origin, released from rest
+  from a bent spatial shape (a quarter circle tilted 17 degrees down). On
+  spherical joints, or on revolute joints whose axes alternate between the two
+  directions normal to the rod. The free end whips.
+arm: N links along +x, revolute axes alternating world z and y, masses from
+  5 kg at the shoulder to 0.3 kg at the tool, started with joint rates that
+  grow towards the tool (a light distal link that is whipped).
+spinner: a light box (0.2 kg, principal inertias 1:2:3) on a spherical joint
+  0.05 m from its centre, spinning at 300 rad/s about its intermediate axis
+  with a small perturbation: it flips while it swings.
+
+Initial velocities are consistent with the joints: they are computed here from
+joint rates, so `mbrt sim` runs the models without --project-initial.
+"""
+import argparse
+import math
+import sys
+
+GRAVITY = 9.81
+
+
+def add(a, b):
+    return [x + y for x, y in zip(a, b)]
+
+
+def sub(a, b):
+    return [x - y for x, y in zip(a, b)]
+
+
+def scale(s, a):
+    return [s * x for x in a]
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def unit(a):
+    return scale(1.0 / math.sqrt(dot(a, a)), a)
+
+
+def quaternion_from_x(d):
+    """Euler parameters of the shortest rotation taking the body x axis to the unit vector d."""
+    x = [1.0, 0.0, 0.0]
+    c = dot(x, d)
+    if c < -1.0 + 1e-12:
+        return [0.0, 0.0, 0.0, 1.0]
+    axis = cross(x, d)
+    e0 = math.sqrt((1.0 + c) / 2.0)
+    return [e0] + scale(0.5 / e0, axis)
+
+
+def rotate_transposed(q, v):
+    """R(q)^T v: a world vector in body axes."""
+    e0, e = q[0], q[1:]
+    # R^T v = v + 2 e0 (v x e) + 2 e x (e x v)
+    t = cross(e, v)
+    return add(add(v, scale(-2.0 * e0, t)), scale(2.0, cross(e, t)))
+
+
+def fmt(v):
+    return "[" + ", ".join("%.17g" % x for x in v) + "]"
+
+
+def rod_inertia(m, length, radius):
+    axial = m * radius * radius / 2.0
+    transverse = m * (3.0 * radius * radius + length * length) / 12.0
+    return [axial, transverse, transverse]
+
+
+def tree_velocities(bodies, joints):
+    """COM velocities (world) and angular velocities (body axes) of a serial chain
+    from the joints' relative angular velocities (world, at their points)."""
+    omega = [0.0, 0.0, 0.0]
+    anchors = []
+    for body, joint in zip(bodies, joints):
+        omega = add(omega, joint["rate"])
+        anchors.append((joint["point"], joint["rate"]))
+        v = [0.0, 0.0, 0.0]
+        for point, rate in anchors:
+            v = add(v, cross(rate, sub(body["position"], point)))
+        body["velocity"] = v
+        body["angular_velocity"] = rotate_transposed(body["orientation"], omega)
+
+
+def write(name, comment, bodies, joints, step, out):
+    out.write("".join("# %s\n" % line for line in comment))
+    out.write("name: %s\ngravity: [0, 0, %r]\nbodies:\n" % (name, -GRAVITY))
+    for b in bodies:
+        out.write("  - {name: %s, mass: %r, inertia: %s,\n     position: %s, orientation: %s,\n"
+                  "     velocity: %s, angular_velocity: %s}\n"
+                  % (b["name"], b["mass"], fmt(b["inertia"]), fmt(b["position"]), fmt(b["orientation"]),
+                     fmt(b["velocity"]), fmt(b["angular_velocity"])))
+    out.write("joints:\n")
+    for j in joints:
+        extra = ", axis: %s" % fmt(j["axis"]) if j["type"] == "revolute" else ""
+        out.write("  - {name: %s, type: %s, body1: %s, body2: %s, point: %s%s}\n"
+                  % (j["name"], j["type"], j["body1"], j["body2"], fmt(j["point"]), extra))
+    out.write("solver: {scheme: staggered-pcst, step: %r, euler_updates: 2}\n" % step)
+
+
+def chain(n, joint_type, name, out):
+    mass, length, radius = 0.1, 0.25, 0.01
+    tilt = 0.3
+    bodies, joints, point = [], [], [0.0, 0.0, 0.0]
+    for i in range(n):
+        phi = 0.5 * math.pi * i / max(1, n - 1)
+        d = [math.cos(phi) * math.cos(tilt), math.sin(phi) * math.cos(tilt), -math.sin(tilt)]
+        q = quaternion_from_x(d)
+        bodies.append({"name": "link_%d" % i, "mass": mass, "inertia": rod_inertia(mass, length, radius),
+                       "position": add(point, scale(length / 2.0, d)), "orientation": q})
+        joint = {"name": "joint_%d" % i, "type": joint_type, "body1": "ground" if i == 0 else "link_%d" % (i - 1),
+                 "body2": "link_%d" % i, "point": point, "rate": [0.0, 0.0, 0.0]}
+        if joint_type == "revolute":
+            normal = unit(cross(d, [0.0, 0.0, 1.0]))
+            joint["axis"] = normal if i % 2 == 0 else unit(cross(d, normal))
+        joints.append(joint)
+        point = add(point, scale(length, d))
+    tree_velocities(bodies, joints)
+    comment = ["Spatial %d-link chain on %s joints: rods of 0.1 kg, 0.25 m, radius 0.01 m," % (n, joint_type),
+               "hanging from the origin, released from rest bent (a quarter circle tilted down).",
+               "Generated by tools/make_spatial.py chain %d --joint %s; do not edit by hand." % (n, joint_type)]
+    write(name, comment, bodies, joints, 1.0e-3, out)
+
+
+def arm(n, name, out):
+    if n not in (6, 7):
+        raise SystemExit("make_spatial.py arm: N must be 6 or 7")
+    lengths = [0.4, 0.4, 0.3, 0.3, 0.15, 0.1, 0.08][-n:]
+    masses = [5.0, 4.0, 3.0, 2.0, 1.0, 0.6, 0.3][-n:]
+    radii = [0.05, 0.04, 0.035, 0.03, 0.025, 0.02, 0.02][-n:]
+    rates = [1.0, -1.5, 2.0, -3.0, 4.0, -6.0, 8.0][-n:]
+    bodies, joints, x = [], [], 0.0
+    for i in range(n):
+        bodies.append({"name": "link_%d" % i, "mass": masses[i],
+                       "inertia": rod_inertia(masses[i], lengths[i], radii[i]),
+                       "position": [x + lengths[i] / 2.0, 0.0, 0.0], "orientation": [1.0, 0.0, 0.0, 0.0]})
+        axis = [0.0, 0.0, 1.0] if i % 2 == 0 else [0.0, 1.0, 0.0]
+        joints.append({"name": "joint_%d" % i, "type": "revolute", "axis": axis,
+                       "body1": "ground" if i == 0 else "link_%d" % (i - 1), "body2": "link_%d" % i,
+                       "point": [x, 0.0, 0.0], "rate": scale(rates[i], axis)})
+        x += lengths[i]
+    tree_velocities(bodies, joints)
+    comment = ["%d-link spatial arm: links along +x, revolute axes alternating z and y," % n,
+               "5 kg shoulder link down to a 0.3 kg tool link, joint rates growing to the tool.",
+               "Generated by tools/make_spatial.py arm %d; do not edit by hand." % n]
+    write(name, comment, bodies, joints, 1.0e-3, out)
+
+
+def spinner(name, out):
+    mass = 0.2
+    inertia = [1.0e-4, 2.0e-4, 3.0e-4]
+    offset = 0.05
+    body = {"name": "box", "mass": mass, "inertia": inertia, "position": [0.0, 0.0, -offset],
+            "orientation": [1.0, 0.0, 0.0, 0.0]}
+    w = [0.5, 300.0, 0.5]  # body = world axes at t = 0; the intermediate axis is y
+    body["angular_velocity"] = w
+    body["velocity"] = cross(w, [0.0, 0.0, -offset])
+    joint = {"name": "pivot", "type": "spherical", "body1": "ground", "body2": "box", "point": [0.0, 0.0, 0.0]}
+    comment = ["A light box (0.2 kg, principal inertias 1:2:3 x 1e-4) on a spherical joint 0.05 m",
+               "above its centre, spinning at 300 rad/s about its intermediate axis (body y).",
+               "Generated by tools/make_spatial.py spinner; do not edit by hand."]
+    write(name, comment, [body], [joint], 1.0e-3, out)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("kind", choices=["chain", "arm", "spinner"])
+    parser.add_argument("n", type=int, nargs="?", help="links (chain: N >= 1, arm: 6 or 7)")
+    parser.add_argument("--joint", choices=["spherical", "revolute"], default="spherical", help="chain joints")
+    parser.add_argument("--name", help="model name")
+    args = parser.parse_args()
+    if args.kind != "spinner" and (args.n is None or args.n < 1):
+        parser.error("%s needs N >= 1" % args.kind)
+    if args.kind == "chain":
+        default = "chain_%d%s" % (args.n, "" if args.joint == "spherical" else "_revolute")
+        chain(args.n, args.joint, args.name or "spatial_" + default, sys.stdout)
+    elif args.kind == "arm":
+        arm(args.n, args.name or "arm_%d" % args.n, sys.stdout)
+    else:
+        spinner(args.name or "spinner", sys.stdout)
+
+
+if __name__ == "__main__":
+    main()
