@@ -1,5 +1,8 @@
 #include "analysis.hpp"
 
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseQR>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -412,6 +415,19 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     const Eigen::SparseMatrix<double> b_m_inv = b * inverse_mass_matrix(model);
     s_diagonal = b_m_inv.cwiseProduct(b) * Eigen::VectorXd::Ones(b.cols());
     a.regularization = model.solver.penalty * s_diagonal.maxCoeff();
+    // Redundant rows (closed planar loops, Bricard's mechanism) leave S singular
+    // but for the regularization; the position stage then keeps to S.
+    Eigen::SparseMatrix<double> bt = b.transpose();
+    bt.makeCompressed();
+    Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> qr;
+    qr.setPivotThreshold(1e-10 * std::max(1.0, b.norm()));
+    qr.compute(bt);
+    a.redundant_rows = a.constraint_rows - static_cast<int>(qr.rank());
+    // The position stage's matrix B(q*) M^-1 B(q(t))^T is not symmetric: with
+    // redundant rows, its left and right null spaces differ and a shift as small
+    // as S's lets the unreachable part of phi grow. 1e-2 of S's diagonal keeps
+    // it bounded (measured on the four-bar and Bricard's mechanism; docs/stability.md).
+    a.newton_shift = a.redundant_rows > 0 ? 1e-2 * s_diagonal.maxCoeff() : a.regularization;
   }
   if (model.solver.scheme == "ali3p") a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
   if (model.solver.scheme == "staggered-nps") a.tree = plan_tree(model, a.constraints);

@@ -100,6 +100,8 @@ struct Analysis {
   bool gravity = false;
   bool velocity_dependent_forces = false;  // gyroscopic or damping terms: two stages per step
   double regularization = 0.0;             // added to the diagonal of S
+  int redundant_rows = 0;                  // constraint rows minus the rank of B at t = 0
+  double newton_shift = 0.0;               // added to the diagonal of staggered-pcst's position-stage matrix
   double stabilization = 0.0;              // staggered-pcst alpha, 1/s
   double baumgarte_alpha = 0.0;            // baumgarte, 1/s
   double baumgarte_beta = 0.0;             // baumgarte, 1/s

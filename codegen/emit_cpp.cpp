@@ -86,10 +86,7 @@ void Emitter::constants(std::ostringstream& o) const {
   o << "constexpr double h = kStep;\n"
     << "constexpr int kStages = " << stages() << ";  // implicit stages per step\n"
     << "constexpr double kRegularization = " << num(a_.regularization) << ";  // added to diag(S)\n";
-  if (rattle()) {
-    o << "constexpr int kPositionIterations = 1;  // Newton steps of the position stage\n"
-      << "constexpr int kNewtonSolves = 3;  // solves per Newton step (defect correction)\n";
-  }
+  if (rattle()) position_stage_constants(o);
   switch (scheme_kind()) {
     case Scheme::pcst:
     case Scheme::nps:

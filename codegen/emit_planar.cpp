@@ -42,6 +42,7 @@ void Emitter::planar_constants(std::ostringstream& o) const {
     << plane.axis_name() << "\n"
     << "constexpr int kPlanarRows = " << a_.constraint_rows << ";  // of kConstraintRows\n"
     << "constexpr int kStages = " << (a_.specialize.single_stage && !damped && !baumgarte ? 1 : 2) << ";  // implicit stages per step\n";
+  if (rattle()) position_stage_constants(o);
   if (a_.gravity && !folded_weights()) {
     const Eigen::Vector3d g = axes(m_.gravity.value_or(Eigen::Vector3d::Zero()));
     o << "const mbrt::Vec2 kGravity(" << num(g.x()) << ", " << num(g.y()) << ");\n";
@@ -97,7 +98,8 @@ void Emitter::planar_velocity_helpers(std::ostringstream& o) const {
 }
 
 void Emitter::planar_explicit_stage(std::ostringstream& o) const {
-  o << R"(// (s, accelerations at t) => (s): explicit stage, central difference in the
+  if (!rattle()) {
+    o << R"(// (s, accelerations at t) => (s): explicit stage, central difference in the
 // plane (docs/staggered-pcst.md, eqs. 1-3); the rotation about the normal by
 // the spatial step's Cayley updates.
 void explicit_stage(State& s) noexcept {
@@ -109,6 +111,25 @@ void explicit_stage(State& s) noexcept {
 }
 
 )";
+    return;
+  }
+  o << R"(// (s, accelerations at t) => (s): half kick of the velocities in the plane
+// (docs/staggered-pcst.md, eq. 1).
+void kick(State& s) noexcept {
+  for (int b = 0; b < kRigidBodies; ++b) mbrt::planar_kick<kNormal>(s.rigid[b], s.rigid_acceleration[b], h);
+  for (int b = 0; b < kParticles; ++b) mbrt::planar_kick<kNormal>(s.particle[b], s.particle_acceleration[b], h);
+}
+
+// (s) => (s): positions to t + h with the half-step velocities (eqs. 2-3); the
+// rotation about the normal by the spatial step's Cayley updates.
+void drift(State& s) noexcept {
+  for (int b = 0; b < kRigidBodies; ++b) mbrt::planar_drift<kNormal>(s.rigid[b], h, kEulerUpdates);
+  for (int b = 0; b < kParticles; ++b) mbrt::planar_drift<kNormal>(s.particle[b], h);
+  s.t += h;
+}
+
+)";
+  set_positions_function(o);
 }
 
 // Loads of loads_stage in the plane: torques about the normal, forces and springs

@@ -50,17 +50,7 @@ void drift(State& s) noexcept {
   }
   o << "  s.t += h;\n}\n\n";
   if (rattle()) {
-    o << R"(// (from) => (s): positions and time of another state.
-void set_positions(const State& from, State& s) noexcept {
-  for (int b = 0; b < kRigidBodies; ++b) {
-    s.rigid[b].r = from.rigid[b].r;
-    s.rigid[b].p = from.rigid[b].p;
-  }
-  for (int b = 0; b < kParticles; ++b) s.particle[b].r = from.particle[b].r;
-  s.t = from.t;
-}
-
-)";
+    set_positions_function(o);
   } else {
     o << "// (s, accelerations at t) => (s): the explicit stage.\nvoid explicit_stage(State& s) noexcept {\n"
       << "  kick(s);\n  drift(s);\n}\n\n";
@@ -150,30 +140,43 @@ void correct_velocities(const ConstraintSystem& c, State& s) noexcept {
   }
 }
 
+void Emitter::position_stage_constants(std::ostringstream& o) const {
+  o << "constexpr int kPositionIterations = 2;  // Newton steps of the position stage\n"
+    << "constexpr double kNewtonShift = " << num(a_.newton_shift) << ";  // added to diag(G)"
+    << (a_.redundant_rows > 0 ? " (" + std::to_string(a_.redundant_rows) + " redundant rows)" : "") << "\n";
+}
+
+void Emitter::set_positions_function(std::ostringstream& o) const {
+  o << R"(// (from) => (s): positions and time of another state.
+void set_positions(const State& from, State& s) noexcept {
+  for (int b = 0; b < kRigidBodies; ++b) {
+    s.rigid[b].r = from.rigid[b].r;
+    s.rigid[b].p = from.rigid[b].p;
+  }
+  for (int b = 0; b < kParticles; ++b) s.particle[b].r = from.particle[b].r;
+  s.t = from.t;
+}
+
+)";
+}
+
 void Emitter::position_stage(std::ostringstream& o) const {
-  o << R"(// (c0, c, u_kick, last_good) => (s, c.rows_*): the position stage. The
+  newton_matrix(o);
+  o << R"(// (c0, c, u_kick, last_good) => (s, k, c.rows_*): the position stage. The
 // first half kick's constraint forces act along M^-1 B(q(t))^T; their
 // multipliers are corrected so that the drift lands on Phi(q(t + h)) = 0
-// (RATTLE's position step, Andersen 1983, J. Comput. Phys. 52, eq. 2.6;
-// Leimkuhler and Skeel 1994, J. Comput. Phys. 112). Newton's matrix
-// B(q*) M^-1 B(q(t))^T is not symmetric; its system is solved by defect
-// correction on the factor of S(q*) at the first drift (docs/stability.md).
-// Taking the corrections along B(q(t))^T, not B(q(t + h))^T, is what keeps
-// the energy of fast-turning bodies bounded.
+// (RATTLE's position step: Andersen 1983, "Rattle: a velocity version of the
+// Shake algorithm", J. Comput. Phys. 52, eqs. 2.6-2.9), by Newton steps with
+// the matrix G = B(q*) M^-1 B(q(t))^T of the first drift q*. Correcting along
+// B(q(t))^T rather than B(q(t + h))^T is what keeps the energy of
+// fast-turning bodies bounded (docs/stability.md).
 void position_stage(const ConstraintSystem& c0, ConstraintSystem& c, BodyVectors& u_kick, const State& last_good,
                     Kinematics& k, State& s) noexcept {
+  NewtonMatrix g;
+  factorize_newton(c0, c, g);
   for (int i = 0; i < kPositionIterations; ++i) {
-    const Rows phi = stacked_phi(c);
-    Rows x = phi;
-    solve(c, x);
-    for (int j = 1; j < kNewtonSolves; ++j) {
-      BodyVectors d;
-      for (auto& v : d) v.setZero();
-      subtract_constraint_forces(c0, x, -1.0, d);
-      Rows r = phi - jacobian_times(c, d);
-      solve(c, r);
-      x += r;
-    }
+    Rows x = stacked_phi(c);
+    solve_newton(g, x);
     subtract_constraint_forces(c0, x, 1.0 / h, u_kick);
     set_positions(last_good, s);
     set_velocities(u_kick, s);

@@ -184,8 +184,11 @@ class Emitter {
   std::string stabilization_term() const;  // of S lambda = B M^-1 F + quad + stabilization
   void explicit_stage_function(std::ostringstream& o) const;
   // staggered-pcst's position stage (RATTLE's position step) after the drift.
-  bool rattle() const { return scheme_kind() == Scheme::pcst && blocks() > 0 && !planar_; }
+  bool rattle() const { return scheme_kind() == Scheme::pcst && blocks() > 0; }
+  void position_stage_constants(std::ostringstream& o) const;
+  void set_positions_function(std::ostringstream& o) const;
   void position_stage(std::ostringstream& o) const;
+  void newton_matrix(std::ostringstream& o) const;  // emit_newton.cpp
   void staggered_stages(std::ostringstream& o) const;
   void staggered_step(std::ostringstream& o) const;
 

@@ -153,18 +153,36 @@ inline void advance_planar_rotation(EulerParameters& p, double omega, double h, 
 }
 
 // The explicit stage of the staggered step for one body (docs/staggered-pcst.md,
-// eqs. 1-3): half a step of velocity, a step of position, in the plane.
+// eqs. 1-3) in its two halves: half a step of velocity, then a step of
+// position and rotation, in the plane.
 template <int Normal>
-inline void planar_explicit_update(RigidState& x, const RigidAcceleration& a, double h, int updates) noexcept {
+inline void planar_kick(RigidState& x, const RigidAcceleration& a, double h) noexcept {
   set_in_plane<Normal>(in_plane<Normal>(x.v) + (0.5 * h) * in_plane<Normal>(a.a), x.v);
   x.w[Normal] += (0.5 * h) * a.alpha[Normal];
+}
+template <int Normal>
+inline void planar_kick(ParticleState& x, const Vec3& a, double h) noexcept {
+  set_in_plane<Normal>(in_plane<Normal>(x.v) + (0.5 * h) * in_plane<Normal>(a), x.v);
+}
+template <int Normal>
+inline void planar_drift(RigidState& x, double h, int updates) noexcept {
   set_in_plane<Normal>(in_plane<Normal>(x.r) + h * in_plane<Normal>(x.v), x.r);
   advance_planar_rotation<Normal>(x.p, x.w[Normal], h, updates);
 }
 template <int Normal>
-inline void planar_explicit_update(ParticleState& x, const Vec3& a, double h) noexcept {
-  set_in_plane<Normal>(in_plane<Normal>(x.v) + (0.5 * h) * in_plane<Normal>(a), x.v);
+inline void planar_drift(ParticleState& x, double h) noexcept {
   set_in_plane<Normal>(in_plane<Normal>(x.r) + h * in_plane<Normal>(x.v), x.r);
+}
+
+template <int Normal>
+inline void planar_explicit_update(RigidState& x, const RigidAcceleration& a, double h, int updates) noexcept {
+  planar_kick<Normal>(x, a, h);
+  planar_drift<Normal>(x, h, updates);
+}
+template <int Normal>
+inline void planar_explicit_update(ParticleState& x, const Vec3& a, double h) noexcept {
+  planar_kick<Normal>(x, a, h);
+  planar_drift<Normal>(x, h);
 }
 
 // Blajer's position correction of one body by dq = (dx, dy, dtheta): the
