@@ -1,5 +1,7 @@
 #include "generate.hpp"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -64,11 +66,13 @@ void check_initial_state(const Model& model, const Analysis& analysis) {
 }  // namespace
 
 Generated generate(const std::string& model_path, const GenerateOptions& options) {
-  Generated g{load_model(model_path), {}, {}};
+  Generated g{load_model(model_path), {}, {}, {}};
   apply_overrides(g.model, options);
   g.analysis = analyse(g.model, options.specialize);
   if (options.project_initial) project_initial_state(g.model, g.analysis);
   check_initial_state(g.model, g.analysis);
+  g.stable = estimate_stable_step(g.model);
+  if (const std::string w = stable_step_warning(g.model, g.stable); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   g.code = emit_cpp(g.model, g.analysis);
   if (!g.model.inputs.empty() && !g.model.outputs.empty()) {
     g.code.interface_files = emit_lcm(g.model);

@@ -7,6 +7,7 @@
 
 #include "emit_cpp.hpp"
 #include "specializations.hpp"
+#include "stable_step.hpp"
 
 namespace mbrt::codegen {
 
@@ -27,6 +28,7 @@ struct Generated {
   Model model;
   Analysis analysis;
   GeneratedCode code;
+  StableStep stable;  // printed as a warning on stderr when the step is above it
 };
 
 // Throws ModelError on a bad model, including inconsistent initial

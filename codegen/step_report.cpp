@@ -60,6 +60,7 @@ StepReport report_step(const Generated& g, const SimOptions& options) {
   r.executable_bytes = fs::file_size(executable);
   r.per_step = count_step(executable, g.model.solver.step, kCountedSteps);
   read_calibration(r);
+  r.stable = g.stable;
   return r;
 }
 
@@ -84,7 +85,8 @@ std::string report_json(const StepReport& r) {
   if (r.ns_per_flop) o << *r.ns_per_flop; else o << "null";
   o << ",\n  \"predicted_ns_per_step\": ";
   if (r.ns_per_flop) o << *r.ns_per_flop * r.per_step.flops; else o << "null";
-  o << ",\n  \"calibration\": " << json_string(r.calibration) << "\n}";
+  o << ",\n  \"calibration\": " << json_string(r.calibration) << ",\n  \"stable_step\": " << stable_step_json(r.stable)
+    << "\n}";
   return o.str();
 }
 

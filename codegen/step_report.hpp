@@ -25,6 +25,7 @@ struct StepReport {
   StepCount per_step;
   std::optional<double> ns_per_flop;  // calibration, when timing/results has one
   std::string calibration;            // where it came from, or why there is none
+  StableStep stable;
 };
 
 // Compiles the model's sim program (cached) and counts one step under valgrind.

@@ -1,0 +1,190 @@
+#include "stable_step.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+namespace mbrt::codegen {
+
+namespace {
+
+// Rotation per step (h * fastest rotation) each scheme keeps finite with a
+// bounded energy, from the spinning-body stress runs (docs/stability.md):
+// staggered-pcst's position stage and free rotation stay finite to about 0.7
+// rad per step (energy within 1 % to 0.5, lost beyond 0.85); the schemes whose constraint forces are explicit in the position
+// (staggered-nps, baumgarte, blajer) lose a fast pivoted body at about 0.1;
+// ali3p stays finite but dissipates beyond about 0.3.
+double rotation_per_step(const std::string& scheme) {
+  if (scheme == "staggered-pcst") return 0.7;
+  if (scheme == "ali3p") return 0.3;
+  return 0.1;
+}
+
+// Upper bounds of each body's distance from the ground point its chain hangs
+// from, through the joints (rigid distances add up), and that point; bodies no
+// joint path ties to the ground get none.
+struct Reach {
+  std::vector<double> distance;
+  std::vector<Eigen::Vector3d> root;
+  std::vector<Eigen::Vector3d> inboard;  // the joint point towards the ground
+  std::vector<bool> tied;
+};
+
+Eigen::Vector3d joint_point(const Joint& j, int body) {
+  if (j.type == JointType::distance) return body == j.body1 ? j.point1 : j.point2;
+  return j.point;
+}
+
+Reach reach(const Model& m) {
+  const size_t n = m.bodies.size();
+  Reach r{std::vector<double>(n, 0.0), std::vector<Eigen::Vector3d>(n, Eigen::Vector3d::Zero()),
+          std::vector<Eigen::Vector3d>(n, Eigen::Vector3d::Zero()), std::vector<bool>(n, false)};
+  for (size_t pass = 0; pass <= n; ++pass) {  // relax along the joints until nothing changes
+    bool changed = false;
+    for (const Joint& j : m.joints) {
+      for (const auto& [from, to] : {std::pair{j.body1, j.body2}, std::pair{j.body2, j.body1}}) {
+        if (to == kGround) continue;
+        const Eigen::Vector3d q = joint_point(j, to);
+        const Eigen::Vector3d& c = m.bodies[static_cast<size_t>(to)].position;
+        double d;
+        Eigen::Vector3d root;
+        if (from == kGround) {
+          d = (c - joint_point(j, from)).norm();
+          root = joint_point(j, from);
+        } else if (r.tied[static_cast<size_t>(from)]) {
+          const Eigen::Vector3d& cf = m.bodies[static_cast<size_t>(from)].position;
+          d = r.distance[static_cast<size_t>(from)] + (joint_point(j, from) - cf).norm() + (c - q).norm();
+          root = r.root[static_cast<size_t>(from)];
+        } else {
+          continue;
+        }
+        const size_t t = static_cast<size_t>(to);
+        if (!r.tied[t] || d < r.distance[t] - 1e-12) {
+          r.tied[t] = true;
+          r.distance[t] = d;
+          r.root[t] = root;
+          r.inboard[t] = q;
+          changed = true;
+        }
+      }
+    }
+    if (!changed) break;
+  }
+  return r;
+}
+
+double kinetic_energy(const Body& b) {
+  double t = 0.5 * b.mass * b.velocity.squaredNorm();
+  if (!b.particle) t += 0.5 * b.angular_velocity.dot(b.inertia * b.angular_velocity);
+  return t;
+}
+
+std::string format(double x) {
+  std::ostringstream o;
+  o.precision(3);
+  o << x;
+  return o.str();
+}
+
+}  // namespace
+
+StableStep estimate_stable_step(const Model& m) {
+  StableStep s;
+  s.rotation_per_step = rotation_per_step(m.solver.scheme);
+  const Reach r = reach(m);
+  double energy = 0.0;
+  for (size_t i = 0; i < m.bodies.size(); ++i) {
+    const Body& b = m.bodies[i];
+    energy += kinetic_energy(b);
+    if (m.gravity && r.tied[i]) {
+      const double g = m.gravity->norm();
+      if (g > 0.0) {
+        const Eigen::Vector3d down = *m.gravity / g;
+        energy += b.mass * g * std::max(0.0, down.dot(r.root[i] - b.position) + r.distance[i]);
+      }
+    }
+  }
+  bool loads = false;
+  for (const Force& f : m.forces) {
+    if (f.type != ForceType::spring_damper) {
+      loads = true;
+      continue;
+    }
+    const double stretch = (f.point2 - f.point1).norm() - f.rest_length;  // points: world at t = 0
+    energy += 0.5 * f.stiffness * stretch * stretch;
+    auto inverse_mass = [&](int b) { return b == kGround ? 0.0 : 1.0 / m.bodies[static_cast<size_t>(b)].mass; };
+    const double w = std::sqrt(f.stiffness * (inverse_mass(f.body1) + inverse_mass(f.body2)));
+    if (w > s.stiffest_frequency) {
+      s.stiffest_frequency = w;
+      s.stiffest_element = "spring_damper " + m.body_name(f.body1) + " - " + m.body_name(f.body2);
+    }
+  }
+  s.energy_bound = energy;
+  for (size_t i = 0; i < m.bodies.size(); ++i) {
+    const Body& b = m.bodies[i];
+    if (b.particle) continue;
+    // The inertia about the joint the body hangs from (parallel axes), as if
+    // that joint stood still: a whipped tip link turns about it.
+    const Eigen::Quaterniond q(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]);
+    const Eigen::Matrix3d rot = q.toRotationMatrix();
+    Eigen::Matrix3d inertia = rot * b.inertia * rot.transpose();
+    if (r.tied[i]) {
+      const Eigen::Vector3d d = b.position - r.inboard[i];
+      inertia += b.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+    }
+    const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
+    const double bound = std::max(b.angular_velocity.norm(), std::sqrt(2.0 * energy / moments[1]));
+    if (bound > s.fastest_rotation) {
+      s.fastest_rotation = bound;
+      s.fastest_body = b.name;
+    }
+  }
+  double step = 0.0;
+  if (s.fastest_rotation > 0.0) step = s.rotation_per_step / s.fastest_rotation;
+  if (s.stiffest_frequency > 0.0) {
+    const double spring = 2.0 / s.stiffest_frequency;
+    step = step > 0.0 ? std::min(step, spring) : spring;
+  }
+  s.stable_step = step;
+  s.exceeded = step > 0.0 && m.solver.step > step;
+  if (loads || !m.inputs.empty() || !m.drivers.empty()) {
+    s.note = "torques, forces, inputs and drivers can add energy beyond this bound";
+  }
+  return s;
+}
+
+std::string stable_step_warning(const Model& m, const StableStep& s) {
+  if (!s.exceeded) return "";
+  std::ostringstream o;
+  o << "warning: " << m.name << ": step " << format(m.solver.step) << " s is above the stable step "
+    << format(s.stable_step) << " s that " << m.solver.scheme << " is estimated to allow: ";
+  const bool rotation = s.fastest_rotation > 0.0 && s.rotation_per_step / s.fastest_rotation <= s.stable_step * 1.0000001;
+  if (rotation) {
+    o << "body " << s.fastest_body << " could turn at " << format(s.fastest_rotation) << " rad/s about the joint it hangs from"
+      << " with the " << format(s.energy_bound) << " J the scene can release, and " << m.solver.scheme
+      << " stays finite to about " << format(s.rotation_per_step) << " rad per step";
+  } else {
+    o << s.stiffest_element << " oscillates at " << format(s.stiffest_frequency)
+      << " rad/s and the explicit stage needs h * omega < 2";
+  }
+  o << " (docs/stability.md)";
+  if (m.solver.scheme != "staggered-pcst" && rotation) o << "; staggered-pcst allows about 0.7 rad per step";
+  return o.str();
+}
+
+std::string stable_step_json(const StableStep& s) {
+  std::ostringstream o;
+  o.precision(6);
+  o << "{\"stable_step\": " << s.stable_step << ", \"exceeded\": " << (s.exceeded ? "true" : "false")
+    << ", \"energy_bound\": " << s.energy_bound << ", \"fastest_rotation\": " << s.fastest_rotation
+    << ", \"fastest_body\": \"" << s.fastest_body << "\", \"rotation_per_step\": " << s.rotation_per_step
+    << ", \"stiffest_frequency\": " << s.stiffest_frequency << ", \"stiffest_element\": \"" << s.stiffest_element
+    << "\", \"note\": \"" << s.note << "\"}";
+  return o.str();
+}
+
+}  // namespace mbrt::codegen

@@ -1,0 +1,33 @@
+// The step a scene allows, estimated at generation time from the fastest
+// rotation its energy allows and its stiffest spring (docs/stability.md,
+// "Stable step estimate"). `gen --report` prints it; gen, sim, hil and stub
+// warn before the run when the model's step is above it.
+#pragma once
+
+#include <string>
+
+#include "analysis.hpp"
+
+namespace mbrt::codegen {
+
+struct StableStep {
+  double energy_bound = 0.0;       // J: initial kinetic + elastic energy + the largest fall gravity allows
+  double fastest_rotation = 0.0;   // rad/s: the energy bound, about each body's inboard joint, largest over the bodies
+  std::string fastest_body;
+  double rotation_per_step = 0.0;  // rad: what the scheme keeps bounded, measured (docs/stability.md)
+  double stiffest_frequency = 0.0; // rad/s: sqrt(k (1/m1 + 1/m2)) of the stiffest spring; 0 without springs
+  std::string stiffest_element;
+  double stable_step = 0.0;        // s: min(rotation_per_step / fastest_rotation, 2 / stiffest_frequency); 0 = no bound
+  bool exceeded = false;           // the model's solver.step is above stable_step
+  std::string note;                // what the estimate leaves out, when the scene has it
+};
+
+StableStep estimate_stable_step(const Model& model);
+
+// A warning for stderr when the step is above the estimate, else "".
+std::string stable_step_warning(const Model& model, const StableStep& s);
+
+// The "stable_step" object of gen --report.
+std::string stable_step_json(const StableStep& s);
+
+}  // namespace mbrt::codegen
