@@ -310,9 +310,9 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
       plan.principal_axes = specialize.principal_axes && off.cwiseAbs().maxCoeff() == 0.0;
       const Eigen::Vector3d d = b.inertia.diagonal();
       plan.isotropic = specialize.isotropic && d.x() == d.y() && d.y() == d.z() && off.cwiseAbs().maxCoeff() == 0.0;
-      // ali3p applies the gyroscopic torque as a load; the staggered schemes
-      // carry it in the free rotation of their explicit stage.
-      if (!plan.isotropic && model.solver.scheme == "ali3p") a.velocity_dependent_forces = plan.loaded = true;
+      // staggered-pcst carries the gyroscopic torque in the free rotation of
+      // its drift; the other schemes apply it as a load.
+      if (!plan.isotropic && model.solver.scheme != "staggered-pcst") a.velocity_dependent_forces = plan.loaded = true;
     }
     a.bodies.push_back(plan);
   }
@@ -416,7 +416,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     s_diagonal = b_m_inv.cwiseProduct(b) * Eigen::VectorXd::Ones(b.cols());
     a.regularization = model.solver.penalty * s_diagonal.maxCoeff();
     // Redundant rows (closed planar loops, Bricard's mechanism) leave S singular
-    // but for the regularization; the position stage then keeps to S.
+    // but for the regularization.
     Eigen::SparseMatrix<double> bt = b.transpose();
     bt.makeCompressed();
     Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> qr;

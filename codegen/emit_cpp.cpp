@@ -549,7 +549,11 @@ mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
   constraint_rows(k, s.t, c);
   const Rows phi = stacked_phi(c);
   const Rows phi_dot = velocity_residual(c, generalized_velocities(s));
-  const Rows phi_ddot = jacobian_times(c, accelerations_of(s)) + stacked_quad(c);
+  BodyVectors a = accelerations_of(s);
+)" << (free_rotation() && any_gyroscopic()
+           ? "  const BodyVectors g = gyroscopic_accelerations(s);  // the free rotation's part\n"
+             "  for (int b = 0; b < kBodies; ++b) a[b] += g[b];\n"
+           : "") << R"(  const Rows phi_ddot = jacobian_times(c, a) + stacked_quad(c);
   if (kConstraintRows == 0) return {0.0, 0.0, 0.0};
   return {phi.cwiseAbs().maxCoeff(), phi_dot.cwiseAbs().maxCoeff(), phi_ddot.cwiseAbs().maxCoeff()};
 }

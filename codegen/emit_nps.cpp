@@ -334,10 +334,8 @@ void Emitter::nps_stages(std::ostringstream& o) const {
   } else {
     o << "  (void)c;\n";
   }
-  o << "}\n\n";
-  const bool gyro = any_gyroscopic();
-  if (gyro) gyroscopic_accelerations_function(o);
-  o << "// (c, t, l, phi, s) => (s.lambda, accelerations): the accelerations meet\n"
+  o << "}\n\n"
+    << "// (c, t, l, phi, s) => (s.lambda, accelerations): the accelerations meet\n"
     << "// B u' + quad + (2/h) (B u + alpha phi) = 0 on every row (eq. 7 of\n"
     << "// docs/staggered-pcst.md): exactly on the tree rows, through the\n"
     << "// regularized S_cut on the cut rows.\n"
@@ -345,16 +343,8 @@ void Emitter::nps_stages(std::ostringstream& o) const {
     << "                       State& s) noexcept {\n"
     << "  const Rows target = -(stacked_quad(c) + (2.0 / h) * (velocity_residual(c, generalized_velocities(s)) +\n"
     << "                                                        kStabilization * phi));\n"
-    << "  BodyVectors f;\n  for (int b = 0; b < kBodies; ++b) f[b] = mbrt::as_vector(l.w[b]);\n";
-  if (gyro) {
-    // The multipliers balance the gyroscopic torques too; the stored
-    // accelerations leave them to the explicit stage's free rotation.
-    o << "  const BodyVectors g = gyroscopic_accelerations(s);\n";
-    for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
-      if (gyroscopic(i)) o << "  f[" << i << "] += mbrt::mass_times(" << mass_of(i) << ", g[" << i << "]);\n";
-    }
-  }
-  o << "  TreeSolution x;\n  tree_solve(t, f, target, x);\n";
+    << "  BodyVectors f;\n  for (int b = 0; b < kBodies; ++b) f[b] = mbrt::as_vector(l.w[b]);\n"
+    << "  TreeSolution x;\n  tree_solve(t, f, target, x);\n";
   if (nps_cuts()) {
     o << "  CutRows lambda_cut = cut_jacobian_times(c, x.acc) - cut_rows_of(target);\n  solve_cut(t, lambda_cut);\n"
       << "  const BodyVectors f_cut = cut_forces(c, lambda_cut);\n"
@@ -366,9 +356,7 @@ void Emitter::nps_stages(std::ostringstream& o) const {
       offset += rows(j);
     }
   }
-  o << "  tree_multipliers(t, x, s.lambda);\n";
-  if (gyro) o << "  for (int b = 0; b < kBodies; ++b) x.acc[b] -= g[b];\n";
-  o << "  set_accelerations(x.acc, s);\n}\n\n";
+  o << "  tree_multipliers(t, x, s.lambda);\n  set_accelerations(x.acc, s);\n}\n\n";
 }
 
 }  // namespace mbrt::codegen

@@ -31,21 +31,22 @@ void kick(State& s) noexcept {
 }
 
 // (s) => (s): positions to t + h with the half-step velocities (eq. 2), and
-// each body's torque-free rotation over h, which carries its gyroscopic
-// torque (eq. 3; docs/stability.md).
+// the Euler parameters (eq. 3): under staggered-pcst each body's torque-free
+// rotation over h, which carries its gyroscopic torque (docs/stability.md).
 void drift(State& s) noexcept {
   for (int b = 0; b < kRigidBodies; ++b) s.rigid[b].r += h * s.rigid[b].v;
   for (int b = 0; b < kParticles; ++b) s.particle[b].r += h * s.particle[b].v;
 )";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    if (!plan(static_cast<int>(i)).rigid) continue;
-    const std::string st = state_of(static_cast<int>(i));
-    if (spherical_inertia(static_cast<int>(i))) {
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    if (!plan(i).rigid) continue;
+    const std::string st = state_of(i);
+    if (!free_rotation()) {
+      o << "  " << st << ".p = mbrt::advance_euler_parameters(" << st << ".p, " << st << ".w, h, kEulerUpdates);\n";
+    } else if (spherical_inertia(i)) {
       o << "  " << st << ".p = mbrt::advance_euler_parameters(" << st << ".p, " << st
-        << ".w, h, kEulerUpdates);  // " << body(static_cast<int>(i)).name << ": spherical inertia, w constant\n";
+        << ".w, h, kEulerUpdates);  // " << body(i).name << ": spherical inertia, w constant\n";
     } else {
-      o << "  mbrt::free_rotation(" << mass_of(static_cast<int>(i)) << ", " << st << ".p, " << st
-        << ".w, h, kEulerUpdates);\n";
+      o << "  mbrt::free_rotation(" << mass_of(i) << ", " << st << ".p, " << st << ".w, h, kEulerUpdates);\n";
     }
   }
   o << "  s.t += h;\n}\n\n";
@@ -176,7 +177,12 @@ void position_stage(const ConstraintSystem& c0, ConstraintSystem& c, BodyVectors
   factorize_newton(c0, c, g);
   for (int i = 0; i < kPositionIterations; ++i) {
     Rows x = stacked_phi(c);
+    Rows y = x;
     solve_newton(g, x);
+    // G is close to singular where a long chain turns by more than its softest
+    // modes allow; a Newton step larger than S(q*)'s is then not trusted.
+    solve(c, y);
+    if (!(x.squaredNorm() <= 4.0 * y.squaredNorm())) x = y;
     subtract_constraint_forces(c0, x, 1.0 / h, u_kick);
     set_positions(last_good, s);
     set_velocities(u_kick, s);

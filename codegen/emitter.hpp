@@ -103,10 +103,13 @@ class Emitter {
   // Bodies whose gyroscopic torque the step evaluates (not the isotropic ones
   // when specialized; a planar scene turns about a principal axis and has none).
   bool gyroscopic(int i) const { return plan(i).rigid && !plan(i).isotropic && !planar_; }
-  // ali3p applies the gyroscopic torque as a load; the staggered schemes rotate
-  // the bodies freely in the explicit stage and need the torque only in the
-  // multipliers' right-hand side (docs/stability.md).
-  bool gyroscopic_loads() const { return scheme_kind() == Scheme::ali3p; }
+  // Where the gyroscopic torque is a load; staggered-pcst rotates the bodies
+  // freely in the drift and needs the torque only in the multipliers'
+  // right-hand side (docs/stability.md).
+  bool gyroscopic_loads() const { return !free_rotation(); }
+  // The staggered-pcst step turns bodies by their torque-free rotation in the
+  // drift; the other schemes keep the gyroscopic torque as a load.
+  bool free_rotation() const { return scheme_kind() == Scheme::pcst; }
   bool any_gyroscopic() const {
     for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i)
       if (gyroscopic(i)) return true;

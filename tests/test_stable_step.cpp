@@ -1,0 +1,66 @@
+// The stable-step estimate of gen --report (codegen/stable_step.hpp): the
+// energy bound on the fastest rotation against closed forms, the spring
+// limit, and the warning a scheme's limit gives before the run.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "model.hpp"
+#include "stable_step.hpp"
+
+using mbrt::codegen::estimate_stable_step;
+using mbrt::codegen::parse_model;
+
+namespace {
+
+// A uniform 1 kg, 1 m rod pinned at the origin, released at rest horizontally.
+const char* kRodPendulum = R"(name: rod
+gravity: [0, 0, -9.81]
+bodies:
+  - {name: rod, mass: 1, inertia: [1.0e-4, 0.08333333333333333, 0.08333333333333333], position: [0.5, 0, 0]}
+joints:
+  - {name: pin, type: revolute, body1: ground, body2: rod, point: [0, 0, 0], axis: [0, 1, 0]}
+solver: {scheme: staggered-pcst, step: 1.0e-3}
+)";
+
+}  // namespace
+
+TEST_CASE("the fastest rotation of a rod pendulum released horizontally is its closed-form rate at the bottom") {
+  const auto s = estimate_stable_step(parse_model(kRodPendulum, "rod.yaml"));
+  // Falls m g L/2 = 4.905 J; 1/2 (m L^2 / 3) w^2 = m g L / 2 gives w = sqrt(3 g / L).
+  CHECK(s.energy_bound == doctest::Approx(4.905).epsilon(1e-12));
+  CHECK(s.fastest_rotation == doctest::Approx(std::sqrt(3.0 * 9.81)).epsilon(1e-6));
+  CHECK(s.fastest_body == "rod");
+  CHECK_FALSE(s.exceeded);
+}
+
+TEST_CASE("a stiff spring limits the step to 2 / omega and is named") {
+  const auto s = estimate_stable_step(parse_model(R"(name: stiff
+bodies:
+  - {name: bob, mass: 0.01, particle: true, position: [1, 0, 0]}
+forces:
+  - {type: spring_damper, body1: ground, body2: bob, point1: [0, 0, 0], point2: [1, 0, 0], stiffness: 1.0e5, rest_length: 1}
+solver: {scheme: staggered-pcst, step: 1.0e-3}
+)",
+                                                  "stiff.yaml"));
+  CHECK(s.stiffest_frequency == doctest::Approx(std::sqrt(1e5 / 0.01)));
+  CHECK(s.stable_step == doctest::Approx(2.0 / std::sqrt(1e7)));
+  CHECK(s.exceeded);
+  CHECK(s.stiffest_element == "spring_damper ground - bob");
+  CHECK(mbrt::codegen::stable_step_warning(parse_model(kRodPendulum, "rod.yaml"), estimate_stable_step(parse_model(kRodPendulum, "rod.yaml"))).empty());
+}
+
+TEST_CASE("a body spinning fast on a pivot is beyond the schemes with explicit constraint forces, and they say so") {
+  const std::string spinner = std::string(MBRT_STRESS_MODELS) + "/spinner.yaml";
+  mbrt::codegen::Model m = mbrt::codegen::load_model(spinner);
+  CHECK_FALSE(estimate_stable_step(m).exceeded);  // staggered-pcst at 1 ms: 0.3 rad per step
+  for (const char* scheme : {"staggered-nps", "baumgarte", "blajer"}) {
+    m.solver.scheme = scheme;
+    const auto s = estimate_stable_step(m);
+    CHECK(s.exceeded);
+    const std::string w = mbrt::codegen::stable_step_warning(m, s);
+    CHECK(w.find("body box could turn at") != std::string::npos);
+    CHECK(w.find(scheme) != std::string::npos);
+  }
+}
