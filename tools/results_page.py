@@ -228,6 +228,25 @@ def stability(out):
                 r["max_position_violation"], r["intermediate_axis_flips"], r["ns_per_step"]] for r in data])
         for m in sorted({r["model"] for r in data}):
             image(out, "stability_%s.png" % m, m + " drift")
+    paragraph(out, "### Stress suite: spatial arms, chains and a spinning body")
+    data = measured(out, "stability_stress", "timing/stability_stress")
+    if data is not None:
+        paragraph(out,
+            "Conservative models of tools/make_spatial.py (docs/stability.md), every mbrt scheme and "
+            "MuJoCo's and Simbody's fixed-step integrators (timing/peer_stability.cpp) on the same model. "
+            "Energy from the body states (timing/stress_energy.py, peer_stability); drift: the largest "
+            "|E - E0| / |E0| over the run; t reached: when the state stopped being finite, or the end.")
+        table(out, ["model", "engine", "h", "finite", "t reached (s)", "largest drift", "drift at the end",
+                    "ns per step"],
+              [[r["model"], r["engine"], r["h"], r["finite"], g(r["t_reached"]), g(r["max_relative_drift"]),
+                g(r["final_relative_drift"]), g(r["ns_per_step"])] for r in data])
+        steps = rows("stability_stress_steps.csv")
+        if steps is not None:
+            paragraph(out, "The largest step tried that stays finite with the energy within 2 %:")
+            table(out, ["model", "engine", "largest step"],
+                  [[r["model"], r["engine"], r["largest_step_within_2_percent"]] for r in steps])
+        for m in sorted({r["model"] for r in data}):
+            image(out, "stability_stress_%s.png" % m, m + " energy at 1 ms")
     paragraph(out, "### Largest stable step")
     data = measured(out, "stable_step", "timing/stable_step")
     if data is not None:
