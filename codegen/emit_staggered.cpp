@@ -40,11 +40,8 @@ void drift(State& s) noexcept {
   for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
     if (!plan(i).rigid) continue;
     const std::string st = state_of(i);
-    if (!free_rotation()) {
+    if (!free_rotation() || spherical_inertia(i)) {  // w constant over the step
       o << "  " << st << ".p = mbrt::advance_euler_parameters(" << st << ".p, " << st << ".w, h, kEulerUpdates);\n";
-    } else if (spherical_inertia(i)) {
-      o << "  " << st << ".p = mbrt::advance_euler_parameters(" << st << ".p, " << st
-        << ".w, h, kEulerUpdates);  // " << body(i).name << ": spherical inertia, w constant\n";
     } else {
       o << "  mbrt::free_rotation(" << mass_of(i) << ", " << st << ".p, " << st << ".w, h, kEulerUpdates);\n";
     }

@@ -1,4 +1,4 @@
-// Per-body state, pose and velocity as the step sees them (DESIGN section 4):
+// Per-body state, pose and velocity as the step sees them:
 // COM position r and velocity v in world axes; Euler parameters p (body to
 // world); angular velocity w in body axes. Particles carry no rotational state.
 #pragma once

@@ -107,7 +107,7 @@ inline ConstraintRows<6> fixed(const JointFrame& f, const BodyMotion& m1, const 
 }
 
 // Screw: cylindrical plus translation along the axis = pitch x rotation
-// about it (seed 004), phi = pitch wrap(d_a / pitch - theta), which is
+// about it (Lidstrom 2012, Math. Mech. Solids 17(3), 209-242), phi = pitch wrap(d_a / pitch - theta), which is
 // d_a - pitch theta on the branch nearest the current translation (5 rows).
 inline ConstraintRows<5> screw(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
   ConstraintRows<5> rows;

@@ -1,5 +1,7 @@
 // Euler-parameter kinematics: rotation matrix, quaternion product and the
-// closed-form Cayley (implicit-midpoint) update of seed 000, section 5.5.4.
+// closed-form Cayley (implicit-midpoint) update of Chiou 1990 ("Constraint
+// treatment techniques and parallel algorithms for multibody dynamic analysis",
+// PhD thesis, section 5.5.4).
 #pragma once
 
 #include "mbrt/types.hpp"
@@ -7,7 +9,7 @@
 namespace mbrt {
 
 // Body-to-world rotation matrix R(p): x_world = R * x_body.
-// This is the transpose of seed 000 eq. 2.6.5, which maps world to body.
+// This is the transpose of Chiou 1990 eq. 2.6.5, which maps world to body.
 inline Mat3 rotation_matrix(const EulerParameters& p) noexcept {
   const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
   Mat3 r;
