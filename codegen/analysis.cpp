@@ -295,6 +295,17 @@ std::vector<Skipped> skipped_code(const Model& model, const Analysis& a) {
   return out;
 }
 
+StepPlan plan_step(const Model& model, const Analysis& a) {
+  StepPlan p;
+  p.scheme = model.solver.scheme;
+  const bool pcst = p.scheme == mbrt::Scheme::staggered_pcst;
+  const bool baumgarte = p.scheme == mbrt::Scheme::baumgarte && a.constraint_rows > 0;
+  p.stages = a.velocity_dependent_forces || baumgarte || !a.specialize.single_stage ? 2 : 1;
+  p.position_stage = pcst && !a.constraints.empty();
+  p.free_rotation = pcst;
+  return p;
+}
+
 }  // namespace
 
 Analysis analyse(const Model& model, const Specializations& specialize) {
@@ -312,7 +323,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
       plan.isotropic = specialize.isotropic && d.x() == d.y() && d.y() == d.z() && off.cwiseAbs().maxCoeff() == 0.0;
       // staggered-pcst carries the gyroscopic torque in the free rotation of
       // its drift; the other schemes apply it as a load.
-      if (!plan.isotropic && model.solver.scheme != "staggered-pcst") a.velocity_dependent_forces = plan.loaded = true;
+      if (!plan.isotropic && model.solver.scheme != mbrt::Scheme::staggered_pcst) a.velocity_dependent_forces = plan.loaded = true;
     }
     a.bodies.push_back(plan);
   }
@@ -429,9 +440,10 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     // it bounded (measured on the four-bar and Bricard's mechanism; docs/stability.md).
     a.newton_shift = a.redundant_rows > 0 ? 1e-2 * s_diagonal.maxCoeff() : a.regularization;
   }
-  if (model.solver.scheme == "ali3p") a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
-  if (model.solver.scheme == "staggered-nps") a.tree = plan_tree(model, a.constraints);
+  if (model.solver.scheme == mbrt::Scheme::ali3p) a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
+  if (model.solver.scheme == mbrt::Scheme::staggered_nps) a.tree = plan_tree(model, a.constraints);
 
+  a.step = plan_step(model, a);
   a.planar = plan_planar(model, a);
   a.skipped = skipped_code(model, a);
   return a;

@@ -80,13 +80,30 @@ struct Ali3pPlan {
 // block's rows (ConstraintBlock::spatial_rows).
 struct PlanarPlan {
   bool applies = false;
+  int stages = 2;                            // implicit passes of the planar step (StepPlan::stages)
   std::string refusal;                       // why not, when it does not apply
   int normal = 2;
   std::vector<ConstraintBlock> constraints;  // same order as Analysis::constraints, planar kernels and rows
   int constraint_rows = 0;
 };
 
+// How the scheme's step runs for this model (include/mbrt/schemes/).
+struct StepPlan {
+  mbrt::Scheme scheme = mbrt::Scheme::staggered_pcst;
+  // Implicit passes per step: two when the end-of-step accelerations depend
+  // on the end-of-step velocities (gyroscopic or damping loads, Baumgarte's
+  // velocity term) or without the single-stage specialization, else one.
+  int stages = 2;
+  // staggered-pcst with constraints: RATTLE's position stage after the drift.
+  bool position_stage = false;
+  // staggered-pcst: bodies turn by their torque-free rotation in the drift,
+  // and the gyroscopic torque enters only the multipliers' right-hand side;
+  // the other schemes apply it as a load (docs/stability.md).
+  bool free_rotation = false;
+};
+
 struct Analysis {
+  StepPlan step;
   std::vector<BodyPlan> bodies;  // same order as Model::bodies
   int rigid_count = 0;
   int particle_count = 0;

@@ -1,5 +1,5 @@
-// Step emission for ali3p: index-3 augmented Lagrangian with the trapezoidal
-// rule or generalized-alpha, then velocity and acceleration projections
+// Kernels of ali3p (the step is mbrt::schemes::ali3p_step, include/mbrt/schemes/ali3p.hpp):
+// index-3 augmented Lagrangian with the trapezoidal rule or generalized-alpha, then velocity and acceleration projections
 // (Dopico et al. 2014; docs/ali3p.md). The tangent M + c B^T alpha B and the
 // projection matrices are inverted through the Woodbury identity with the
 // block Cholesky factor of S + shift, so every matrix keeps S's fixed pattern.
@@ -13,7 +13,7 @@ namespace {
 
 // A Rows constant with one value per constraint row.
 std::string rows_literal(const std::string& name, const std::vector<double>& values, const std::string& comment) {
-  std::string s = "// " + comment + "\nconst Rows " + name + " = ";
+  std::string s = "// " + comment + "\nstatic inline const Rows " + name + " = ";
   if (values.empty()) return s + "Rows::Zero();\n";
   s += "(Rows() << ";
   for (size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + num(values[i]);
@@ -47,17 +47,17 @@ void Emitter::ali3p_constants(std::ostringstream& o) const {
     }
   }
   o << "// Integrator: " << (set.generalized_alpha ? "generalized-alpha, rho_inf = " + num(set.rho_inf) : "trapezoidal rule")
-    << ".\nconstexpr double kBeta = " << num(p.beta) << ";\nconstexpr double kGamma = " << num(p.gamma)
-    << ";\nconstexpr double kDeltaM = " << num(p.delta_m) << ";  // weight of t in the inertia term\n"
-    << "constexpr double kDeltaF = " << num(p.delta_f) << ";  // weight of t in the force terms\n"
-    << "constexpr int kNewtonIterations = " << set.newton_iterations << ";\n"
-    << "constexpr int kProjectionIterations = " << set.projection_iterations << ";  // "
+    << ".\nstatic constexpr double kBeta = " << num(p.beta) << ";\nstatic constexpr double kGamma = " << num(p.gamma)
+    << ";\nstatic constexpr double kDeltaM = " << num(p.delta_m) << ";  // weight of t in the inertia term\n"
+    << "static constexpr double kDeltaF = " << num(p.delta_f) << ";  // weight of t in the force terms\n"
+    << "static constexpr int kNewtonIterations = " << set.newton_iterations << ";\n"
+    << "static constexpr int kProjectionIterations = " << set.projection_iterations << ";  // "
     << (set.cuadrado_projection ? "cuadrado: P + w B^T alpha B = tangent" : "bayo: P = M, w = 1") << "\n"
     << rows_literal("kAlpha", alpha, "Penalty alpha per row.")
     << rows_literal("kTangentShift", tangent_shift,
                     "Tangent M + c B^T alpha B, c = (1 - dF)/(1 - dM) beta h^2: S's shift 1/(c alpha).")
     << rows_literal("kProjectionShift", projection_shift, "Projection matrix M + w B^T alpha B: S's shift 1/(w alpha).")
-    << "const Rows kProjectionWeight = kProjectionShift.cwiseInverse();\n\n";
+    << "static inline const Rows kProjectionWeight = kProjectionShift.cwiseInverse();\n\n";
 }
 
 void Emitter::ali3p_stages(std::ostringstream& o) const {
@@ -65,7 +65,7 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
   o << "// (n, u_n, a_n, a) => (s, u): Newmark positions and velocities at t + h for\n"
     << "// the accelerations a; rotations advance by the body-frame increment\n"
     << "// through the Cayley map.\n"
-    << "void newmark_update(const State& n, const BodyVectors& u_n, const BodyVectors& a_n, const BodyVectors& a,\n"
+    << "static void newmark_update(const State& n, const BodyVectors& u_n, const BodyVectors& a_n, const BodyVectors& a,\n"
     << "                    State& s, BodyVectors& u) noexcept {\n"
     << "  BodyVectors d;\n"
     << "  for (int b = 0; b < kBodies; ++b) {\n"
@@ -85,7 +85,7 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
 
   const bool weighted = ali3p_weighted();
   o << "// (c, l, lambda) => (M^-1 g): g = B^T lambda - F per body.\n"
-    << "BodyVectors constraint_minus_applied(const ConstraintSystem& c, const Loads& l, const Rows& lambda) noexcept {\n"
+    << "static BodyVectors constraint_minus_applied(const ConstraintSystem& c, const Loads& l, const Rows& lambda) noexcept {\n"
     << "  BodyVectors x = free_accelerations(l);\n"
     << "  for (mbrt::Vec6& v : x) v = -v;\n"
     << "  subtract_constraint_forces(c, lambda, -1.0, x);\n"
@@ -94,7 +94,7 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
     << "//   (1 - dM) M a + dM M a_n + (1 - dF) g + dF g_n = 0,  g = B^T lambda - F,\n"
     << "// lambda = lambda* + alpha phi, with the tangent M + c B^T alpha B inverted as\n"
     << "// M^-1 - M^-1 B^T (S + 1/(c alpha))^-1 B M^-1 (c is in kTangentShift).\n"
-    << "void newton_correction(const ConstraintSystem& c, const Loads& l, const Rows& lambda,"
+    << "static void newton_correction(const ConstraintSystem& c, const Loads& l, const Rows& lambda,"
     << (weighted ? " const BodyVectors& a_n,\n                       const BodyVectors& g_n," : "")
     << " BodyVectors& a) noexcept {\n"
     << "  BodyVectors x = constraint_minus_applied(c, l, lambda);\n";
@@ -118,7 +118,7 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
 //   (S + W^-1) nu = B x* + g + W^-1 sigma,
 // a form without the large products W g. nu is the projection's multiplier:
 // for accelerations, the constraint forces' projection part.
-Rows project(const ConstraintSystem& c, const Rows& g, BodyVectors& x) noexcept {
+static Rows project(const ConstraintSystem& c, const Rows& g, BodyVectors& x) noexcept {
   const BodyVectors x_star = x;
   const Rows b_x_star = jacobian_times(c, x_star) + g;
   Rows sigma = Rows::Zero();
@@ -137,76 +137,6 @@ Rows project(const ConstraintSystem& c, const Rows& g, BodyVectors& x) noexcept 
 // the initial state, S lambda = B M^-1 F + quad.
 )";
   constraint_forces_function(o, "");
-}
-
-void Emitter::ali3p_step(std::ostringstream& o) const {
-  const bool weighted = ali3p_weighted();
-  o << R"(mbrt::StepStatus step(State& s) noexcept {
-  const State n = s;
-  const BodyVectors u_n = generalized_velocities(n);
-  const BodyVectors a_n = accelerations_of(n);
-  s.t += h;
-
-  // Newton iterations on the accelerations from the predictor a = a_n
-  // (q = q_n + h u_n + h^2/2 a_n), the multipliers lambda* updated by
-  // alpha phi from the second iteration on (Dopico et al. 2014, sec. 3.3).
-  BodyVectors a = a_n;
-  BodyVectors u;
-  Rows lambda_star = n.ali3p_lambda_star;
-  Kinematics k;
-  ConstraintSystem c;
-  Loads l;
-  bool positive = true;
-  for (int i = 0; i < kNewtonIterations; ++i) {
-    newmark_update(n, u_n, a_n, a, s, u);
-    kinematics(s, k);
-    constraint_rows(k, s.t, c);
-    const Rows phi = stacked_phi(c);
-    if (i > 0) lambda_star += kAlpha.cwiseProduct(phi);
-    )" << loads_call() << R"(;
-    positive = factorize(c, kTangentShift) && positive;
-)";
-  o << "    newton_correction(c, l, lambda_star + kAlpha.cwiseProduct(phi), "
-    << (weighted ? "a_n, n.ali3p_force, " : "") << "a);\n  }\n";
-  o << R"(
-  // The step's positions; the multipliers lambda* + alpha phi (eq. 36) are
-  // the dynamic part of the constraint forces and the next step's start.
-  newmark_update(n, u_n, a_n, a, s, u);
-  kinematics(s, k);
-  constraint_rows(k, s.t, c);
-  s.lambda = lambda_star + kAlpha.cwiseProduct(stacked_phi(c));
-  s.ali3p_lambda_star = s.lambda;
-)";
-  if (weighted) {
-    o << "  " << loads_call() << R"(;
-  s.ali3p_force = constraint_minus_applied(c, l, s.lambda);
-)";
-  }
-  o << R"(
-  // Velocity projection, then the acceleration projection with the
-  // acceleration terms at the projected velocities; its multiplier is the
-  // constraint forces' projection part (Q = Q_dyn + Q_acc, eq. 51).
-  positive = factorize(c, kProjectionShift) && positive;
-)"
-    << "  project(c, " << (a_.rheonomic ? "stacked_phi_t(c)" : "Rows::Zero()") << ", u);\n"
-    << R"(  set_velocities(u, s);
-  k.vel = velocities_of(s);
-  constraint_rows(k, s.t, c);
-  s.lambda += project(c, stacked_quad(c), a);
-  set_accelerations(a, s);
-
-  if (!finite(s)) {
-    s = n;
-    return mbrt::StepStatus::non_finite;
-  }
-  if (!positive) {
-    s = n;
-    return mbrt::StepStatus::not_positive;
-  }
-  return mbrt::StepStatus::ok;
-}
-
-)";
 }
 
 }  // namespace mbrt::codegen

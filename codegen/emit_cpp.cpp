@@ -19,12 +19,14 @@ GeneratedCode Emitter::run() {
 std::string Emitter::header() const {
   std::ostringstream o;
   o << "// mbrt generated model '" << m_.name << "' from " << m_.file << "\n"
-    << "// scheme " << m_.solver.scheme << ", h = " << num(m_.solver.step) << " s, euler_updates = "
+    << "// scheme " << mbrt::scheme_name(scheme_kind()) << ", h = " << num(m_.solver.step) << " s, euler_updates = "
     << m_.solver.euler_updates << ". Generated code: regenerate, do not edit.\n"
-    << "#pragma once\n\n#include <array>\n\n#include <mbrt/model_api.hpp>\n\n"
+    << "#pragma once\n\n#include <array>\n#include <cstddef>\n\n#include <mbrt/model_api.hpp>\n"
+    << (scheme_kind() == Scheme::staggered_nps ? "#include <mbrt/natural_partitioning.hpp>\n" : "")
+    << "#include <mbrt/runtime.hpp>\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\n"
     << "inline constexpr const char* kName = \"" << m_.name << "\";\n"
-    << "inline constexpr const char* kScheme = \"" << m_.solver.scheme << "\";\n"
+    << "inline constexpr const char* kScheme = \"" << mbrt::scheme_name(scheme_kind()) << "\";\n"
     << "inline constexpr double kStep = " << num(m_.solver.step) << ";\n"
     << "inline constexpr int kEulerUpdates = " << m_.solver.euler_updates << ";\n"
     << "inline constexpr int kBodies = " << m_.bodies.size() << ";\n"
@@ -64,11 +66,15 @@ std::string Emitter::header() const {
     o << "  // M^-1 (B^T lambda - F) at t, the generalized-alpha weighting's old term.\n"
       << "  std::array<mbrt::Vec6, kBodies> ali3p_force;\n";
   }
-  o << "};\n\n"
-    << "// The model file's initial state with consistent accelerations.\n"
+  o << "};\n\n";
+  workspace_struct(o);
+  o << "// The model file's initial state with consistent accelerations.\n"
     << "State initial_state() noexcept;\n\n"
-    << "// Advances s by kStep. Allocates nothing, throws nothing, fixed work.\n"
-    << "// On a non-finite result or a lost factorization s keeps its old value.\n"
+    << "// Advances s by kStep in the caller's workspace. Allocates nothing, throws\n"
+    << "// nothing, fixed work. On a non-finite result or a lost factorization s\n"
+    << "// keeps its old value.\n"
+    << "mbrt::StepStatus step(State& s, Workspace& w) noexcept;\n"
+    << "// The same with a workspace on the stack, for tools and tests.\n"
     << "mbrt::StepStatus step(State& s) noexcept;\n\n"
     << "mbrt::Energy energy(const State& s) noexcept;\n"
     << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept;\n"
@@ -84,24 +90,20 @@ std::string Emitter::header() const {
 
 void Emitter::constants(std::ostringstream& o) const {
   o << "constexpr double h = kStep;\n"
-    << "constexpr int kStages = " << stages() << ";  // implicit stages per step\n"
     << "constexpr double kRegularization = " << num(a_.regularization) << ";  // added to diag(S)\n";
   if (rattle()) position_stage_constants(o);
   switch (scheme_kind()) {
-    case Scheme::pcst:
-    case Scheme::nps:
+    case Scheme::staggered_pcst:
+    case Scheme::staggered_nps:
       o << "constexpr double kStabilization = " << num(a_.stabilization) << ";  // alpha, 1/s\n";
-      if (nps_cuts()) o << "constexpr int kCutRows = " << a_.tree.cut_rows << ";  // rows outside the tree\n";
       break;
     case Scheme::baumgarte:
       o << "constexpr double kBaumgarteAlpha = " << num(a_.baumgarte_alpha) << ";  // 1/s\n"
         << "constexpr double kBaumgarteBeta = " << num(a_.baumgarte_beta) << ";  // 1/s\n";
       break;
     case Scheme::blajer:
-      o << "constexpr int kCorrections = " << m_.solver.corrections << ";  // position corrections per step\n";
-      break;
     case Scheme::ali3p:
-      break;  // after the workspace types: its constants are per row
+      break;  // in struct Model; ali3p's are per row
   }
   if (a_.gravity) o << "const mbrt::Vec3 kGravity = " << vec3(m_.gravity.value_or(Eigen::Vector3d::Zero())) << ";\n";
   o << "const mbrt::BodyPose kGroundPose = mbrt::ground_pose();\n"
@@ -183,6 +185,70 @@ void Emitter::frame_constants(std::ostringstream& o) const {
   }
 }
 
+// The types of the step's working memory, in the header's namespace detail
+// (detail::planar for the planar step), and the Workspace made of them.
+void Emitter::workspace_struct(std::ostringstream& o) const {
+  o << "// The types step() works with (generated kernels' data).\nnamespace detail {\n\n";
+  if (nps_cuts()) o << "inline constexpr int kCutRows = " << a_.tree.cut_rows << ";  // rows outside the tree\n\n";
+  workspace_types(o);
+  if (rattle() && !a_.planar.applies) newton_matrix_type(o);
+  if (a_.planar.applies) planar_types(o);
+  o << "}  // namespace detail\n\n";
+  const std::string ns = a_.planar.applies ? "detail::planar::" : "detail::";
+  o << "// What step() works on. The caller owns it, so a real-time loop can keep it\n"
+    << "// in memory locked and touched before the loop starts; nothing in it\n"
+    << "// carries over from one step to the next.\n"
+    << "struct Workspace {\n"
+    << "  State last_good;  // the state at t, restored when a step fails\n"
+    << "  " << ns << "Kinematics k;\n"
+    << "  " << ns << "ConstraintSystem c;  // at t + h\n";
+  if (rattle()) {
+    o << "  " << ns << "ConstraintSystem c0;  // at t: the position stage's force directions\n"
+      << "  " << ns << "NewtonMatrix g;       // the position stage's Newton matrix\n";
+  }
+  if (scheme_kind() == Scheme::staggered_nps) o << "  " << ns << "TreeSystem t;\n";
+  o << "  " << ns << "Loads l;\n"
+    << "};\n\n"
+    << "inline constexpr std::size_t kWorkspaceBytes = sizeof(Workspace);\n\n";
+}
+
+void Emitter::model_members(std::ostringstream& o) const {
+  const std::string ns = planar_ ? "detail::planar::" : "detail::";
+  o << "// The model as the scheme's step (include/mbrt/schemes/) sees it: types,\n"
+    << "// constants and kernels.\nstruct Model {\n"
+    << "using State = mbrt::models::" << m_.name << "::State;\n";
+  if (emits_step()) o << "using Workspace = mbrt::models::" << m_.name << "::Workspace;\n";
+  for (const char* t : {"Rows", "BodyVectors", "Kinematics", "Loads", "ConstraintSystem"}) {
+    o << "using " << t << " = " << ns << t << ";\n";
+  }
+  if (rattle() && emits_step()) o << "using NewtonMatrix = " << ns << "NewtonMatrix;\n";
+  if (scheme_kind() == Scheme::staggered_nps) o << "using TreeSystem = " << ns << "TreeSystem;\n";
+  o << "static constexpr mbrt::Scheme kScheme = mbrt::Scheme::" << scheme_identifier() << ";\n"
+    << "static constexpr double kStep = h;\n";
+  switch (scheme_kind()) {
+    case Scheme::ali3p:
+      o << "static constexpr bool kWeighted = " << (ali3p_weighted() ? "true" : "false")
+        << ";  // generalized-alpha: M^-1 (B^T lambda - F) of the last step\n"
+        << "static constexpr bool kRheonomic = " << (a_.rheonomic ? "true" : "false") << ";\n";
+      break;
+    case Scheme::staggered_pcst:
+    case Scheme::staggered_nps:
+    case Scheme::baumgarte:
+    case Scheme::blajer:
+      o << "static constexpr int kStages = " << stages() << ";  // implicit passes per step\n"
+        << "static constexpr bool kPositionStage = " << (rattle() ? "true" : "false") << ";\n";
+      if (rattle()) o << "static constexpr int kPositionIterations = 2;  // Newton steps of the position stage\n";
+      if (scheme_kind() == Scheme::blajer) {
+        o << "static constexpr int kCorrections = " << m_.solver.corrections << ";  // position corrections per step\n";
+      }
+      if (scheme_kind() == Scheme::staggered_nps) {
+        o << "static constexpr int kCutRows = " << (nps_cuts() ? "detail::kCutRows" : "0") << ";\n";
+      }
+      break;
+  }
+  o << "\n";
+}
+
 void Emitter::workspace_types(std::ostringstream& o) const {
   o << "using Rows = Eigen::Matrix<double, " << (planar_ ? "kPlanarRows" : "kConstraintRows") << ", 1>;\n"
     << "using BodyVectors = std::array<mbrt::" << (planar_ ? "Vec3, kBodies>;  // [v_i; v_j; omega_k], plane coordinates" : "Vec6, kBodies>;  // [v; w_body]")
@@ -195,7 +261,7 @@ void Emitter::workspace_types(std::ostringstream& o) const {
     << "  std::array<mbrt::" << type("Wrench") << ", kBodies> w;\n"
     << "  double elastic_energy;\n"
     << "};\n\n"
-    << (scheme_kind() == Scheme::nps ? "// Constraint rows.\n"
+    << (scheme_kind() == Scheme::staggered_nps ? "// Constraint rows.\n"
                                      : "// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of\n"
                                        "// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.\n")
     << "struct ConstraintSystem {\n";
@@ -203,13 +269,13 @@ void Emitter::workspace_types(std::ostringstream& o) const {
     o << "  mbrt::" << type("ConstraintRows") << "<" << rows(ji) << "> rows_" << jname(ji) << ";  // " << block(ji).kernel << " "
       << m_.body_name(block(ji).body1) << " - " << m_.body_name(block(ji).body2) << ", rows " << first_row(ji)
       << ".." << first_row(ji) + rows(ji) - 1 << "\n";
-    if (scheme_kind() == Scheme::nps) continue;
+    if (scheme_kind() == Scheme::staggered_nps) continue;
     for (int b : moving_bodies(ji)) {
       o << "  " << block_type(body_dofs(), rows(ji)) << " mbt_" << ji << "_" << b << ";  // M^-1 B^T: " << jname(ji) << ", "
         << body(b).name << "\n";
     }
   }
-  for (int k : scheme_kind() == Scheme::nps ? std::vector<int>{} : a_.pattern.order) {
+  for (int k : scheme_kind() == Scheme::staggered_nps ? std::vector<int>{} : a_.pattern.order) {
     o << "  " << block_type(rows(k), rows(k)) << " L_" << k << "_" << k << ";  // " << jname(k) << "\n";
     for (int i : a_.pattern.lower[static_cast<size_t>(k)]) {
       o << "  " << block_type(rows(i), rows(k)) << " L_" << i << "_" << k << ";  // " << jname(i) << " x "
@@ -217,12 +283,12 @@ void Emitter::workspace_types(std::ostringstream& o) const {
     }
   }
   o << "};\n\n";
-  if (scheme_kind() == Scheme::nps) nps_workspace(o);
+  if (scheme_kind() == Scheme::staggered_nps) nps_workspace(o);
 }
 
 void Emitter::velocity_helpers(std::ostringstream& o) const {
   const std::string velocity_type = "std::array<mbrt::" + type("BodyVelocity") + ", kBodies>";
-  o << velocity_type << " velocities_of(const State& s) noexcept {\n  " << velocity_type << " vel;\n";
+  o << "static " << velocity_type << " velocities_of(const State& s) noexcept {\n  " << velocity_type << " vel;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     o << "  vel[" << i << "] = mbrt::" << (planar_ ? "planar_velocity_of<kNormal>(" : "velocity_of(") << state_of(static_cast<int>(i))
       << ");\n";
@@ -233,7 +299,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
     return;
   }
   o << "// (s) => (u): generalized velocities [v; w_body] per body.\n"
-    << "BodyVectors generalized_velocities(const State& s) noexcept {\n  BodyVectors u;\n";
+    << "static BodyVectors generalized_velocities(const State& s) noexcept {\n  BodyVectors u;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const std::string st = state_of(static_cast<int>(i));
     if (a_.bodies[i].rigid) o << "  u[" << i << "] << " << st << ".v, " << st << ".w;\n";
@@ -242,7 +308,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
   o << "  return u;\n}\n\n";
   if (emits_step()) {
     o << "// (u) => (s): write generalized velocities back.\n"
-      << "void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
+      << "static void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
     for (size_t i = 0; i < m_.bodies.size(); ++i) {
       const std::string st = state_of(static_cast<int>(i));
       o << "  " << st << ".v = u[" << i << "].head<3>();\n";
@@ -251,7 +317,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
     o << "}\n\n";
   }
   o << "// (a) => (s): accelerations kept for the next step.\n"
-    << "void set_accelerations(const BodyVectors& a, State& s) noexcept {\n";
+    << "static void set_accelerations(const BodyVectors& a, State& s) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const BodyPlan& p = a_.bodies[i];
     if (p.rigid) {
@@ -261,7 +327,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
     }
   }
   o << "}\n\n"
-    << "BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
+    << "static BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const BodyPlan& p = a_.bodies[i];
     if (p.rigid) {
@@ -275,10 +341,14 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
 }
 
 void Emitter::loads_stage(std::ostringstream& o) const {
-  o << "// (k" << (has_inputs() ? ", u" : "") << ") => (l): applied forces (world) and torques (body axes) per body,\n"
-    << "// " << (gyroscopic_loads() && any_gyroscopic() ? "gyroscopic torques " : "")
-    << (has_inputs() ? "inputs " : "") << "included, and the elastic energy stored.\n"
-    << "void applied_loads(const Kinematics& k, " << (has_inputs() ? "const Inputs& u, " : "") << "Loads& l) noexcept {\n"
+  const bool gyroscopic_torques = gyroscopic_loads() && any_gyroscopic();
+  o << "// (k" << (has_inputs() ? ", s.inputs" : "") << ") => (l): applied forces (world) and torques (body axes) per body";
+  if (gyroscopic_torques || has_inputs()) {
+    o << ",\n// " << (gyroscopic_torques ? "gyroscopic torques " : "") << (has_inputs() ? "inputs " : "") << "included";
+  }
+  o << ", and the elastic energy stored.\n"
+    << "static void applied_loads(const Kinematics& k, const State& s, Loads& l) noexcept {\n"
+    << (has_inputs() ? "  const Inputs& u = s.inputs;\n" : "  (void)s;\n")
     << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const BodyPlan& p = a_.bodies[i];
@@ -328,7 +398,7 @@ void Emitter::loads_stage(std::ostringstream& o) const {
 
 void Emitter::constraint_stage(std::ostringstream& o) const {
   o << "// (k, t) => (c.rows_*): constraint values, Jacobians and acceleration terms.\n"
-    << "void constraint_rows(const Kinematics& k, double t, ConstraintSystem& c) noexcept {\n";
+    << "static void constraint_rows(const Kinematics& k, double t, ConstraintSystem& c) noexcept {\n";
   if (blocks() == 0) o << "  (void)k;\n  (void)c;\n";
   if (!a_.rheonomic) o << "  (void)t;\n";
   for (int j = 0; j < blocks(); ++j) {
@@ -342,17 +412,17 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
     o << ");\n";
   }
   o << "}\n\n";
-  if (scheme_kind() != Scheme::nps) factorization(o);
+  if (scheme_kind() != Scheme::staggered_nps) factorization(o);
   o << "// (c, u) => (B u)\n"
-    << "Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  Rows y;\n";
+    << "static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  Rows y;\n";
   if (blocks() == 0) o << "  (void)c;\n  (void)u;\n";
   for (int ji = 0; ji < blocks(); ++ji) {
     o << "  " << seg("y", ji) << " = " << jacobian_product(ji, "u") << ";\n";
   }
   o << "  return y;\n}\n\n";
-  if (scheme_kind() != Scheme::nps) {
+  if (scheme_kind() != Scheme::staggered_nps) {
     o << "// (c, lambda) => (u): u -= scale M^-1 B^T lambda\n"
-      << "void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,\n"
+      << "static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,\n"
       << "                                BodyVectors& u) noexcept {\n";
     if (blocks() == 0) o << "  (void)c;\n  (void)lambda;\n  (void)scale;\n  (void)u;\n";
     for (int ji = 0; ji < blocks(); ++ji) {
@@ -367,7 +437,7 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
   stacked(o, "quad");
   if (a_.rheonomic) stacked(o, "phi_t");
   o << "// (c, u) => (phi_dot = B u + phi_t): velocity residuals.\n"
-    << "Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n";
+    << "static Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n";
   if (a_.rheonomic) {
     o << "  return jacobian_times(c, u) + stacked_phi_t(c);\n}\n\n";
   } else {
@@ -380,7 +450,7 @@ void Emitter::factorization(std::ostringstream& o) const {
   // its projections; the other schemes add kRegularization.
   const bool shifted = scheme_kind() == Scheme::ali3p;
   o << "// (c.rows_*) => (c.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.\n"
-    << "void constraint_directions(ConstraintSystem& c) noexcept {\n";
+    << "static void constraint_directions(ConstraintSystem& c) noexcept {\n";
   if (blocks() == 0) o << "  (void)c;\n";
   for (int ji = 0; ji < blocks(); ++ji) {
     for (int b : moving_bodies(ji)) {
@@ -391,7 +461,7 @@ void Emitter::factorization(std::ostringstream& o) const {
   o << "}\n\n"
     << "// (c.rows_*) => (c.mbt_*, c.L_*): M^-1 B^T, then S block by block in\n"
     << "// elimination order (" << a_.pattern.fill_blocks << " fill blocks); false if a pivot is not positive.\n"
-    << "bool factorize(ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
+    << "static bool factorize(ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
     << ") noexcept {\n  bool positive = true;\n  constraint_directions(c);\n";
   if (shifted && blocks() == 0) o << "  (void)shift;\n";
   const auto& order = a_.pattern.order;
@@ -423,7 +493,7 @@ void Emitter::factorization(std::ostringstream& o) const {
   o << "  return positive;\n}\n\n";
 
   o << "// (c.L_*, x) => (x): x := S^-1 x by forward and backward substitution.\n"
-    << "void solve(const ConstraintSystem& c, Rows& x) noexcept {\n";
+    << "static void solve(const ConstraintSystem& c, Rows& x) noexcept {\n";
   if (blocks() == 0) o << "  (void)c;\n  (void)x;\n";
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
@@ -444,7 +514,7 @@ void Emitter::factorization(std::ostringstream& o) const {
 }
 
 void Emitter::stacked(std::ostringstream& o, const std::string& member) const {
-  o << "Rows stacked_" << member << "(const ConstraintSystem& c) noexcept {\n  Rows y;\n";
+  o << "static Rows stacked_" << member << "(const ConstraintSystem& c) noexcept {\n  Rows y;\n";
   if (blocks() == 0) o << "  (void)c;\n";
   for (int j = 0; j < blocks(); ++j) o << "  " << seg("y", j) << " = c.rows_" << jname(j) << "." << member << ";\n";
   o << "  return y;\n}\n\n";
@@ -474,7 +544,7 @@ std::string Emitter::s_block(int i, int j) const {
 
 void Emitter::mass_products(std::ostringstream& o) const {
   o << "// (l) => (M^-1 F) per body.\n"
-    << "BodyVectors free_accelerations(const Loads& l) noexcept {\n  BodyVectors a;\n";
+    << "static BodyVectors free_accelerations(const Loads& l) noexcept {\n  BodyVectors a;\n";
   if (std::none_of(a_.bodies.begin(), a_.bodies.end(), [](const BodyPlan& p) { return p.loaded; })) o << "  (void)l;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     if (!a_.bodies[i].loaded) {
@@ -487,7 +557,7 @@ void Emitter::mass_products(std::ostringstream& o) const {
 }
 
 void Emitter::initial_state_function(std::ostringstream& o) const {
-  o << "State initial_state() noexcept {\n  State s;\n";
+  o << "static State initial_state() noexcept {\n  State s;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const Body& b = m_.bodies[i];
     const std::string st = state_of(static_cast<int>(i));
@@ -504,7 +574,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
     o << "};  // safe values\n";
   }
   const bool ali3p = scheme_kind() == Scheme::ali3p;
-  const bool nps = scheme_kind() == Scheme::nps;
+  const bool nps = scheme_kind() == Scheme::staggered_nps;
   o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n";
   if (nps) {
     o << "  TreeSystem t;\n  factorize_tree(k, c, t);\n" << (nps_cuts() ? "  factorize_cut(c, t);\n" : "");
@@ -525,7 +595,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
 }
 
 void Emitter::diagnostics(std::ostringstream& o) const {
-  o << R"(mbrt::Energy energy(const State& s) noexcept {
+  o << R"(static mbrt::Energy energy(const State& s) noexcept {
   Kinematics k;
   kinematics(s, k);
   Loads l;
@@ -542,7 +612,7 @@ void Emitter::diagnostics(std::ostringstream& o) const {
   o << R"(  return e;
 }
 
-mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
+static mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
@@ -558,7 +628,7 @@ mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
   return {phi.cwiseAbs().maxCoeff(), phi_dot.cwiseAbs().maxCoeff(), phi_ddot.cwiseAbs().maxCoeff()};
 }
 
-double quaternion_norm_error(const State& s) noexcept {
+static double quaternion_norm_error(const State& s) noexcept {
   double e = 0.0;
   for (const mbrt::RigidState& x : s.rigid) e = std::max(e, std::abs(x.p.norm() - 1.0));
   return e;
@@ -569,7 +639,7 @@ double quaternion_norm_error(const State& s) noexcept {
 
 void Emitter::kinematics_function(std::ostringstream& o) const {
   o << "// (s) => (k): pose and velocity of every body.\n"
-    << "void kinematics(const State& s, Kinematics& k) noexcept {\n";
+    << "static void kinematics(const State& s, Kinematics& k) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     o << "  k.pose[" << i << "] = mbrt::" << (planar_ ? "planar_pose_of<kNormal>(" : "pose_of(") << state_of(static_cast<int>(i))
       << ");  // " << m_.bodies[i].name << "\n";
@@ -582,28 +652,38 @@ std::string Emitter::source() const {
   o << "// mbrt generated model '" << m_.name << "': " << m_.bodies.size() << " bodies (" << a_.rigid_count
     << " rigid, " << a_.particle_count << " particles), " << m_.joints.size() << " joints, " << m_.drivers.size() << " drivers, " << a_.constraint_rows
     << " constraint rows.\n"
-    << "// Scheme " << m_.solver.scheme << ". Stage order per step: ";
-  if (scheme_kind() == Scheme::ali3p) {
-    o << "(newmark_update -> kinematics ->\n// constraint_rows -> applied_loads -> factorize -> newton_correction) x "
-         "kNewtonIterations ->\n// velocity and acceleration projections.\n";
-  } else {
-    o << "explicit_stage -> kinematics ->\n"
-      << "// constraint_rows -> factorize -> (applied_loads -> implicit stage) x kStages"
-      << (scheme_kind() == Scheme::blajer ? " -> corrections" : "") << ".\n";
-  }
+    << "// Scheme " << mbrt::scheme_name(scheme_kind()) << ": the step is mbrt::schemes::"
+    << (scheme_kind() == Scheme::ali3p ? "ali3p_step (include/mbrt/schemes/ali3p.hpp)"
+                                       : "staggered_step (include/mbrt/schemes/staggered.hpp)")
+    << "\n// over " << (a_.planar.applies ? "planar::Model" : "Model") << ", the model's types, constants and kernels below.\n";
   o << "// Left out for this scene:";
   for (const Skipped& s : a_.skipped) o << "\n//   " << s.specialization << ": " << s.removed;
   if (a_.skipped.empty()) o << " nothing";
   if (!a_.planar.refusal.empty()) o << "\n// Kept: spatial coordinates, since " << a_.planar.refusal << ".";
-  o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n#include <mbrt/natural_partitioning.hpp>\n#include <mbrt/reactions.hpp>\n#include <mbrt/runtime.hpp>\n\n"
+  o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n"
+    << "#include <mbrt/reactions.hpp>\n#include <mbrt/schemes/"
+    << (scheme_kind() == Scheme::ali3p ? "ali3p.hpp" : "staggered.hpp") << ">\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";
   constants(o);
-  workspace_types(o);
+  model_members(o);
+  kernels(o);
+  o << "};\n\n";
+  if (a_.planar.applies) planar_stages(o);
+  o << "}  // namespace\n\n";
+  public_functions(o);
+  o << "}  // namespace mbrt::models::" << m_.name << "\n";
+  return o.str();
+}
+
+// struct Model's functions: the kernels the scheme's step calls, and the
+// implementations of the model's tools (initial state, energy, violations,
+// reactions, outputs).
+void Emitter::kernels(std::ostringstream& o) const {
   velocity_helpers(o);
   kinematics_function(o);
   loads_stage(o);
   constraint_stage(o);
-  if (scheme_kind() != Scheme::nps) mass_products(o);
+  if (scheme_kind() != Scheme::staggered_nps) mass_products(o);
   if (scheme_kind() == Scheme::ali3p) {
     ali3p_stages(o);
   } else if (a_.planar.applies) {
@@ -612,35 +692,27 @@ std::string Emitter::source() const {
   } else {
     staggered_stages(o);
   }
-  o << R"(bool finite(const State& s) noexcept {
-  bool ok = std::isfinite(s.lambda.sum());
-  for (const mbrt::RigidState& x : s.rigid) {
-    ok = ok && mbrt::all_finite(x.r) && mbrt::all_finite(x.p) && mbrt::all_finite(x.v) && mbrt::all_finite(x.w);
-  }
-  for (const mbrt::ParticleState& x : s.particle) ok = ok && mbrt::all_finite(x.r) && mbrt::all_finite(x.v);
-  return ok;
-}
-
-)";
-  if (a_.planar.applies) planar_stages(o);
-  o << "}  // namespace\n\n";
   initial_state_function(o);
-  if (scheme_kind() == Scheme::ali3p) {
-    ali3p_step(o);
-  } else if (a_.planar.applies) {
-    o << "mbrt::StepStatus step(State& s) noexcept { return planar::step(s); }\n\n";
-  } else {
-    staggered_step(o);
-  }
   diagnostics(o);
   reactions_function(o);
   if (has_outputs()) outputs_function(o);
-  o << "}  // namespace mbrt::models::" << m_.name << "\n";
-  return o.str();
+}
+
+void Emitter::public_functions(std::ostringstream& o) const {
+  const std::string stepper = a_.planar.applies ? "planar::Model" : "Model";
+  o << "State initial_state() noexcept { return Model::initial_state(); }\n\n"
+    << "mbrt::StepStatus step(State& s, Workspace& w) noexcept {\n  return mbrt::schemes::"
+    << (scheme_kind() == Scheme::ali3p ? "ali3p_step" : "staggered_step") << "<" << stepper << ">(s, w);\n}\n\n"
+    << "mbrt::StepStatus step(State& s) noexcept {\n  Workspace w;\n  return step(s, w);\n}\n\n"
+    << "mbrt::Energy energy(const State& s) noexcept { return Model::energy(s); }\n\n"
+    << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept { return Model::constraint_violation(s); }\n\n"
+    << "double quaternion_norm_error(const State& s) noexcept { return Model::quaternion_norm_error(s); }\n\n"
+    << "void reactions(const State& s, Reactions& r) noexcept { Model::reactions(s, r); }\n\n"
+    << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept { Model::outputs(s, y); }\n\n" : "");
 }
 
 void Emitter::reactions_function(std::ostringstream& o) const {
-  o << "void reactions(const State& s, Reactions& r) noexcept {\n";
+  o << "static void reactions(const State& s, Reactions& r) noexcept {\n";
   if (blocks() == 0) {
     o << "  (void)s;\n  (void)r;\n}\n\n";
     return;
@@ -662,7 +734,7 @@ void Emitter::reactions_function(std::ostringstream& o) const {
 void Emitter::gyroscopic_accelerations_function(std::ostringstream& o) const {
   o << "// (s) => (J^-1 (-w x J w)) per body: the gyroscopic accelerations, which the\n"
     << "// explicit stage's free rotation applies and the multipliers must balance.\n"
-    << "BodyVectors gyroscopic_accelerations(const State& s) noexcept {\n  BodyVectors g;\n";
+    << "static BodyVectors gyroscopic_accelerations(const State& s) noexcept {\n  BodyVectors g;\n";
   for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
     if (!gyroscopic(i)) {
       o << "  g[" << i << "].setZero();\n";
@@ -681,7 +753,7 @@ void Emitter::constraint_forces_function(std::ostringstream& o, const std::strin
   // accelerations, which the next half kick applies, leave them out.
   const bool gyro = any_gyroscopic() && !gyroscopic_loads();
   if (gyro) gyroscopic_accelerations_function(o);
-  o << "void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {\n"
+  o << "static void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {\n"
     << (stabilization.empty() ? "  (void)phi;\n" : "") << "  BodyVectors a = free_accelerations(l);\n";
   if (gyro) {
     o << "  const BodyVectors g = gyroscopic_accelerations(s);\n"

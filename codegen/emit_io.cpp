@@ -93,7 +93,7 @@ void Emitter::input_load(std::ostringstream& o, const Input& in, const InputPlan
 }
 
 void Emitter::outputs_function(std::ostringstream& o) const {
-  o << "void outputs(const State& s, Outputs& y) noexcept {\n  Kinematics k;\n  kinematics(s, k);\n";
+  o << "static void outputs(const State& s, Outputs& y) noexcept {\n  Kinematics k;\n  kinematics(s, k);\n";
   for (const Output& out : m_.outputs) {
     const std::string at = "y.data() + output::" + out.name;
     if (out.joint >= 0) {

@@ -18,6 +18,20 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
 
 }  // namespace
 
+void Emitter::newton_matrix_type(std::ostringstream& o) const {
+  o << "// Block LU factors of the position stage's Newton matrix G = B(q*) M^-1 B(q(t))^T:\n"
+    << "// G = L U with unit-diagonal L, U's diagonal blocks kept inverted.\n"
+    << "struct NewtonMatrix {\n";
+  for (int k : a_.pattern.order) {
+    o << "  " << block_type(rows(k), rows(k)) << " D_" << k << ";  // " << jname(k) << ", inverted\n";
+    for (int i : a_.pattern.lower[static_cast<size_t>(k)]) {
+      o << "  " << block_type(rows(i), rows(k)) << " L_" << i << "_" << k << ";\n"
+        << "  " << block_type(rows(k), rows(i)) << " U_" << k << "_" << i << ";\n";
+    }
+  }
+  o << "};\n\n";
+}
+
 void Emitter::newton_matrix(std::ostringstream& o) const {
   const auto& order = a_.pattern.order;
   const auto& lower = a_.pattern.lower;
@@ -31,19 +45,8 @@ void Emitter::newton_matrix(std::ostringstream& o) const {
   auto up = [](int k, int i) { return "g.U_" + std::to_string(k) + "_" + std::to_string(i); };
   auto pivot = [](int k) { return "g.D_" + std::to_string(k); };
 
-  o << "// Block LU factors of the position stage's Newton matrix G = B(q*) M^-1 B(q(t))^T:\n"
-    << "// G = L U with unit-diagonal L, U's diagonal blocks kept inverted.\n"
-    << "struct NewtonMatrix {\n";
-  for (int k : order) {
-    o << "  " << block_type(rows(k), rows(k)) << " D_" << k << ";  // " << jname(k) << ", inverted\n";
-    for (int i : lower[static_cast<size_t>(k)]) {
-      o << "  " << block_type(rows(i), rows(k)) << " L_" << i << "_" << k << ";\n"
-        << "  " << block_type(rows(k), rows(i)) << " U_" << k << "_" << i << ";\n";
-    }
-  }
-  o << "};\n\n"
-    << "// (c0.mbt_*, c.rows_*) => (g): G block by block in S's elimination order.\n"
-    << "void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {\n";
+  o << "// (c0.mbt_*, c.rows_*) => (g): G block by block in S's elimination order.\n"
+    << "static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {\n";
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
     o << "  // " << jname(k) << "\n  " << pivot(k) << " = " << g_block(k, k) << " + kNewtonShift * "
@@ -72,7 +75,7 @@ void Emitter::newton_matrix(std::ostringstream& o) const {
   if (blocks() == 0) o << "  (void)c0;\n  (void)c;\n  (void)g;\n";
   o << "}\n\n"
     << "// (g, x) => (x): x := G^-1 x by forward and backward substitution.\n"
-    << "void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {\n";
+    << "static void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {\n";
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
     for (size_t pj = 0; pj < pk; ++pj) {

@@ -100,7 +100,7 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
   const TreePlan& tree = a_.tree;
   o << "// (k, c) => (t): the tree elimination, leaves first. IA of a body is its\n"
     << "// mass plus X^T (IA - W W^T) X of each child; false if a pivot is not positive.\n"
-    << "bool factorize_tree(const Kinematics& k, const ConstraintSystem& c, TreeSystem& t) noexcept {\n"
+    << "static bool factorize_tree(const Kinematics& k, const ConstraintSystem& c, TreeSystem& t) noexcept {\n"
     << "  bool positive = true;\n";
   if (blocks() == 0) o << "  (void)c;\n";
   for (const TreeBody& tb : tree.order) {
@@ -172,7 +172,7 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
       << "// B u' = target on the tree rows and D^T (M u' - force) = 0. a_p = Q G^-1\n"
       << "// target is a particular solution per joint. Leaves first, then from the\n"
       << "// roots.\n"
-      << "void tree_solve(const TreeSystem& t, const BodyVectors& force, const Rows& target,\n"
+      << "static void tree_solve(const TreeSystem& t, const BodyVectors& force, const Rows& target,\n"
       << "                TreeSolution& x) noexcept {\n"
       << "  BodyVectors& acc = x.acc;\n  BodyVectors& g = x.g;\n  BodyVectors& part = x.part;\n"
       << "  for (int b = 0; b < kBodies; ++b) {\n    g[b] = -force[b];\n    part[b].setZero();\n  }\n";
@@ -181,7 +181,7 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
     o << "// (t, force) => (acc): u' = D z' with D^T (M u' - force) = 0, the tree's\n"
       << "// response to a force (with a momentum as force: the M-orthogonal\n"
       << "// projection onto the tree's velocity constraints).\n"
-      << "void tree_response(const TreeSystem& t, const BodyVectors& force, BodyVectors& acc) noexcept {\n"
+      << "static void tree_response(const TreeSystem& t, const BodyVectors& force, BodyVectors& acc) noexcept {\n"
       << "  BodyVectors g;  // -force + what the children pass on\n"
       << "  for (int b = 0; b < kBodies; ++b) g[b] = -force[b];\n";
   }
@@ -241,7 +241,7 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
 void Emitter::nps_tree_multipliers(std::ostringstream& o) const {
   o << "// (t, x) => (tree rows of lambda): each tree joint's force on its child,\n"
     << "// -B^T lambda = IA (u' - a_p) + g.\n"
-    << "void tree_multipliers(const TreeSystem& t, const TreeSolution& x, Rows& lambda) noexcept {\n";
+    << "static void tree_multipliers(const TreeSystem& t, const TreeSolution& x, Rows& lambda) noexcept {\n";
   bool joints = false;
   for (const TreeBody& tb : a_.tree.order) {
     if (tb.joint < 0) continue;
@@ -261,7 +261,7 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
   const TreePlan& tree = a_.tree;
   o << "using CutRows = Eigen::Matrix<double, kCutRows, 1>;\n\n"
     << "// (x) => (the cut rows of x, stacked)\n"
-    << "CutRows cut_rows_of(const Rows& x) noexcept {\n  CutRows y;\n";
+    << "static CutRows cut_rows_of(const Rows& x) noexcept {\n  CutRows y;\n";
   int offset = 0;
   for (int j : tree.cut_blocks) {
     o << "  y.segment<" << rows(j) << ">(" << offset << ") = " << seg("x", j) << ";  // " << jname(j) << "\n";
@@ -269,7 +269,7 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
   }
   o << "  return y;\n}\n\n"
     << "// (c, u) => (B_cut u): jacobian_times on the cut rows alone\n"
-    << "CutRows cut_jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  CutRows y;\n";
+    << "static CutRows cut_jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  CutRows y;\n";
   offset = 0;
   for (int j : tree.cut_blocks) {
     o << "  y.segment<" << rows(j) << ">(" << offset << ") = " << jacobian_product(j, "u") << ";\n";
@@ -277,7 +277,7 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
   }
   o << "  return y;\n}\n\n"
     << "// (c, mu) => (B_cut^T mu per body)\n"
-    << "BodyVectors cut_forces(const ConstraintSystem& c, const CutRows& mu) noexcept {\n  BodyVectors f;\n"
+    << "static BodyVectors cut_forces(const ConstraintSystem& c, const CutRows& mu) noexcept {\n  BodyVectors f;\n"
     << "  for (mbrt::Vec6& x : f) x.setZero();\n";
   offset = 0;
   for (int j : tree.cut_blocks) {
@@ -290,7 +290,7 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
   o << "  return f;\n}\n\n"
     << "// (c, t) => (t.S_cut): S_cut = B_cut T B_cut^T + kRegularization I with T\n"
     << "// the tree's response to a force, one tree solve per cut row.\n"
-    << "bool factorize_cut(const ConstraintSystem& c, TreeSystem& t) noexcept {\n"
+    << "static bool factorize_cut(const ConstraintSystem& c, TreeSystem& t) noexcept {\n"
     << "  BodyVectors acc;\n"
     << "  for (int r = 0; r < kCutRows; ++r) {\n"
     << "    tree_response(t, cut_forces(c, CutRows::Unit(r)), acc);\n"
@@ -298,10 +298,10 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
     << "  t.S_cut.diagonal().array() += kRegularization;\n"
     << "  return mbrt::cholesky_in_place(t.S_cut);\n}\n\n"
     << "// (t, x) => (x): x := S_cut^-1 x\n"
-    << "void solve_cut(const TreeSystem& t, CutRows& x) noexcept {\n"
+    << "static void solve_cut(const TreeSystem& t, CutRows& x) noexcept {\n"
     << "  mbrt::solve_lower(t.S_cut, x);\n  mbrt::solve_lower_transposed(t.S_cut, x);\n}\n\n"
     << "// (t, c, mu, u) => (u): u -= T B_cut^T mu\n"
-    << "void subtract_cut_response(const TreeSystem& t, const ConstraintSystem& c, const CutRows& mu,\n"
+    << "static void subtract_cut_response(const TreeSystem& t, const ConstraintSystem& c, const CutRows& mu,\n"
     << "                           BodyVectors& u) noexcept {\n"
     << "  BodyVectors du;\n"
     << "  tree_response(t, cut_forces(c, mu), du);\n"
@@ -318,7 +318,7 @@ void Emitter::nps_stages(std::ostringstream& o) const {
     << "// of u_half + h/2 M^-1 F onto the tree's velocity constraints (a tree solve\n"
     << "// with the momentum as force), then onto the cut rows, regularized as in\n"
     << "// staggered-pcst.\n"
-    << "void implicit_stage(const ConstraintSystem& c, const TreeSystem& t, const Loads& l, const BodyVectors& u_half,\n"
+    << "static void implicit_stage(const ConstraintSystem& c, const TreeSystem& t, const Loads& l, const BodyVectors& u_half,\n"
     << "                    BodyVectors& u) noexcept {\n"
     << "  BodyVectors momentum;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
@@ -339,7 +339,7 @@ void Emitter::nps_stages(std::ostringstream& o) const {
     << "// B u' + quad + (2/h) (B u + alpha phi) = 0 on every row (eq. 7 of\n"
     << "// docs/staggered-pcst.md): exactly on the tree rows, through the\n"
     << "// regularized S_cut on the cut rows.\n"
-    << "void constraint_forces(const ConstraintSystem& c, const TreeSystem& t, const Loads& l, const Rows& phi,\n"
+    << "static void constraint_forces(const ConstraintSystem& c, const TreeSystem& t, const Loads& l, const Rows& phi,\n"
     << "                       State& s) noexcept {\n"
     << "  const Rows target = -(stacked_quad(c) + (2.0 / h) * (velocity_residual(c, generalized_velocities(s)) +\n"
     << "                                                        kStabilization * phi));\n"

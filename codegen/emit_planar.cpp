@@ -1,9 +1,9 @@
-// The step of staggered-pcst, baumgarte or blajer in planar coordinates
-// (docs/specializations.md, "planar"): the same stages as emit_staggered.cpp, emitted by a second
-// Emitter whose constraint blocks are the in-plane rows, into a namespace
-// `planar` whose types (Rows, BodyVectors, Kinematics, ...) and functions
-// shadow the spatial ones. The spatial ones stay for initial_state(),
-// energy(), constraint_violation(), reactions() and outputs().
+// The kernels of staggered-pcst, baumgarte or blajer in planar coordinates
+// (docs/specializations.md, "planar"): the same scheme template
+// (include/mbrt/schemes/staggered.hpp) runs over a second struct Model in
+// namespace `planar`, emitted by an Emitter whose constraint blocks are the
+// in-plane rows. The spatial kernels stay for initial_state(), energy(),
+// constraint_violation(), reactions() and outputs().
 #include <algorithm>
 
 #include "emitter.hpp"
@@ -11,15 +11,12 @@
 namespace mbrt::codegen {
 
 void Emitter::planar_stages(std::ostringstream& o) const {
-  Analysis planar = a_;
-  planar.constraints = a_.planar.constraints;
-  planar.constraint_rows = a_.planar.constraint_rows;
-  const Emitter e(m_, planar, true);
+  const Emitter e = planar_emitter();
   o << "// The step in planar coordinates: motion in one plane, per body two\n"
     << "// coordinates and the rotation about the normal, the in-plane constraint rows only.\n"
     << "namespace planar {\n\n";
   e.planar_constants(o);
-  e.workspace_types(o);
+  e.model_members(o);
   e.velocity_helpers(o);
   e.kinematics_function(o);
   e.loads_stage(o);
@@ -27,21 +24,25 @@ void Emitter::planar_stages(std::ostringstream& o) const {
   e.mass_products(o);
   store_multipliers(o);
   e.staggered_stages(o);
-  e.staggered_step(o);
+  o << "};\n\n}  // namespace planar\n\n";
+}
+
+// The planar step's types, in the header's detail::planar.
+void Emitter::planar_types(std::ostringstream& o) const {
+  const Emitter e = planar_emitter();
+  o << "namespace planar {\n\n"
+    << "inline constexpr int kPlanarRows = " << a_.planar.constraint_rows << ";  // of kConstraintRows\n";
+  e.workspace_types(o);
+  if (e.rattle()) e.newton_matrix_type(o);
   o << "}  // namespace planar\n\n";
 }
 
 void Emitter::planar_constants(std::ostringstream& o) const {
   // A body turning about the normal, a principal axis, has no gyroscopic torque:
   // without dampers (and Baumgarte's velocity term) one implicit stage.
-  const bool damped = std::any_of(m_.forces.begin(), m_.forces.end(),
-                                  [](const Force& f) { return f.type == ForceType::spring_damper && f.damping != 0.0; });
-  const bool baumgarte = scheme_kind() == Scheme::baumgarte && a_.constraint_rows > 0;
   const Plane plane{a_.planar.normal};
   o << "constexpr int kNormal = " << plane.normal << ";  // the plane " << plane.name() << ", normal to world "
-    << plane.axis_name() << "\n"
-    << "constexpr int kPlanarRows = " << a_.constraint_rows << ";  // of kConstraintRows\n"
-    << "constexpr int kStages = " << (a_.specialize.single_stage && !damped && !baumgarte ? 1 : 2) << ";  // implicit stages per step\n";
+    << plane.axis_name() << "\n";
   if (rattle()) position_stage_constants(o);
   if (a_.gravity && !folded_weights()) {
     const Eigen::Vector3d g = axes(m_.gravity.value_or(Eigen::Vector3d::Zero()));
@@ -69,13 +70,13 @@ void Emitter::planar_constants(std::ostringstream& o) const {
 
 void Emitter::planar_velocity_helpers(std::ostringstream& o) const {
   o << "// (s) => (u): (vx, vy, omega_z) per body.\n"
-    << "BodyVectors generalized_velocities(const State& s) noexcept {\n  BodyVectors u;\n";
+    << "static BodyVectors generalized_velocities(const State& s) noexcept {\n  BodyVectors u;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     o << "  u[" << i << "] = mbrt::planar_velocities<kNormal>(" << state_of(static_cast<int>(i)) << ");\n";
   }
   o << "  return u;\n}\n\n"
     << "// (u) => (s): the in-plane velocities; the others stay zero.\n"
-    << "void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
+    << "static void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     o << "  mbrt::set_planar_velocities<kNormal>(u[" << i << "], " << state_of(static_cast<int>(i)) << ");\n";
   }
@@ -85,12 +86,12 @@ void Emitter::planar_velocity_helpers(std::ostringstream& o) const {
     return (p.rigid ? "s.rigid_acceleration[" : "s.particle_acceleration[") + std::to_string(p.slot) + "]";
   };
   o << "// (a) => (s): accelerations kept for the next step.\n"
-    << "void set_accelerations(const BodyVectors& a, State& s) noexcept {\n";
+    << "static void set_accelerations(const BodyVectors& a, State& s) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     o << "  mbrt::set_planar_accelerations<kNormal>(a[" << i << "], " << acceleration(i) << ");\n";
   }
   o << "}\n\n"
-    << "BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
+    << "static BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     o << "  a[" << i << "] = mbrt::planar_accelerations<kNormal>(" << acceleration(i) << ");\n";
   }
@@ -98,38 +99,22 @@ void Emitter::planar_velocity_helpers(std::ostringstream& o) const {
 }
 
 void Emitter::planar_explicit_stage(std::ostringstream& o) const {
-  if (!rattle()) {
-    o << R"(// (s, accelerations at t) => (s): explicit stage, central difference in the
-// plane (docs/staggered-pcst.md, eqs. 1-3); the rotation about the normal by
-// the spatial step's Cayley updates.
-void explicit_stage(State& s) noexcept {
-  for (int b = 0; b < kRigidBodies; ++b) {
-    mbrt::planar_explicit_update<kNormal>(s.rigid[b], s.rigid_acceleration[b], h, kEulerUpdates);
-  }
-  for (int b = 0; b < kParticles; ++b) mbrt::planar_explicit_update<kNormal>(s.particle[b], s.particle_acceleration[b], h);
-  s.t += h;
-}
-
-)";
-    return;
-  }
   o << R"(// (s, accelerations at t) => (s): half kick of the velocities in the plane
 // (docs/staggered-pcst.md, eq. 1).
-void kick(State& s) noexcept {
+static void kick(State& s) noexcept {
   for (int b = 0; b < kRigidBodies; ++b) mbrt::planar_kick<kNormal>(s.rigid[b], s.rigid_acceleration[b], h);
   for (int b = 0; b < kParticles; ++b) mbrt::planar_kick<kNormal>(s.particle[b], s.particle_acceleration[b], h);
 }
 
 // (s) => (s): positions to t + h with the half-step velocities (eqs. 2-3); the
 // rotation about the normal by the spatial step's Cayley updates.
-void drift(State& s) noexcept {
+static void drift(State& s) noexcept {
   for (int b = 0; b < kRigidBodies; ++b) mbrt::planar_drift<kNormal>(s.rigid[b], h, kEulerUpdates);
   for (int b = 0; b < kParticles; ++b) mbrt::planar_drift<kNormal>(s.particle[b], h);
   s.t += h;
 }
 
 )";
-  set_positions_function(o);
 }
 
 // Loads of loads_stage in the plane: torques about the normal, forces and springs
@@ -160,7 +145,7 @@ void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std
 // the spatial block's other (out-of-plane) multipliers are zero in a planar scene.
 void Emitter::store_multipliers(std::ostringstream& o) const {
   o << "// (lambda) => (s.lambda): the in-plane rows of every spatial block.\n"
-    << "void store_multipliers(const Rows& lambda, State& s) noexcept {\n";
+    << "static void store_multipliers(const Rows& lambda, State& s) noexcept {\n";
   if (blocks() == 0) o << "  (void)lambda;\n  (void)s;\n";
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& p = a_.planar.constraints[static_cast<size_t>(j)];

@@ -5,7 +5,9 @@
 // emit_planar.cpp (staggered-pcst's step in planar coordinates).
 #pragma once
 
+#include <algorithm>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -52,10 +54,18 @@ class Emitter {
   GeneratedCode run();
 
  private:
-  // The emitter of the planar step: a_ holds the planar constraint blocks.
-  Emitter(const Model& m, const Analysis& a, bool planar) : m_(m), a_(a), planar_(planar) {}
+  // The emitter of the planar step: it owns an analysis with the planar constraint blocks.
+  Emitter(const Model& m, Analysis&& planar_analysis)
+      : m_(m), owned_(std::make_shared<Analysis>(std::move(planar_analysis))), a_(*owned_), planar_(true) {}
+  Emitter planar_emitter() const {
+    Analysis planar = a_;
+    planar.constraints = a_.planar.constraints;
+    planar.constraint_rows = a_.planar.constraint_rows;
+    return Emitter(m_, std::move(planar));
+  }
 
   const Model& m_;
+  std::shared_ptr<const Analysis> owned_;  // the planar emitter's analysis
   const Analysis& a_;
   const bool planar_ = false;  // emitting the planar step's stages (emit_planar.cpp)
 
@@ -75,13 +85,8 @@ class Emitter {
   // Whether this emitter writes the step's stages (the spatial one does not when the step is planar).
   bool emits_step() const { return planar_ || !a_.planar.applies; }
 
-  // Implicit passes per step: two when the end-of-step accelerations depend on
-  // the end-of-step velocities (gyroscopic or damping loads, Baumgarte's
-  // velocity term) or without the single-stage specialization, else one.
-  int stages() const {
-    const bool baumgarte = m_.solver.scheme == "baumgarte" && a_.constraint_rows > 0;
-    return a_.velocity_dependent_forces || baumgarte || !a_.specialize.single_stage ? 2 : 1;
-  }
+  // Implicit passes per step (the analysis' StepPlan; the planar step's own).
+  int stages() const { return planar_ ? a_.planar.stages : a_.step.stages; }
   // Gravity's m g as a constant per body (folded) rather than a product in every load evaluation.
   bool folded_weights() const { return a_.specialize.folded_weights && m_.gravity.has_value(); }
   std::string weight_of(int i) const { return body(i).name + "_weight"; }
@@ -103,13 +108,9 @@ class Emitter {
   // Bodies whose gyroscopic torque the step evaluates (not the isotropic ones
   // when specialized; a planar scene turns about a principal axis and has none).
   bool gyroscopic(int i) const { return plan(i).rigid && !plan(i).isotropic && !planar_; }
-  // Where the gyroscopic torque is a load; staggered-pcst rotates the bodies
-  // freely in the drift and needs the torque only in the multipliers'
-  // right-hand side (docs/stability.md).
+  // Where the gyroscopic torque is a load (StepPlan::free_rotation).
   bool gyroscopic_loads() const { return !free_rotation(); }
-  // The staggered-pcst step turns bodies by their torque-free rotation in the
-  // drift; the other schemes keep the gyroscopic torque as a load.
-  bool free_rotation() const { return scheme_kind() == Scheme::pcst; }
+  bool free_rotation() const { return a_.step.free_rotation; }
   bool any_gyroscopic() const {
     for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i)
       if (gyroscopic(i)) return true;
@@ -142,7 +143,11 @@ class Emitter {
   std::string source() const;
   void constants(std::ostringstream& o) const;
   void frame_constants(std::ostringstream& o) const;  // joints', inputs' and force elements' vectors, in axes()
-  void workspace_types(std::ostringstream& o) const;
+  void workspace_types(std::ostringstream& o) const;   // the kernels' types (Kinematics, ConstraintSystem, ...)
+  void workspace_struct(std::ostringstream& o) const;  // Workspace: what step() works on
+  void model_members(std::ostringstream& o) const;     // struct Model's types and constants for the scheme
+  void kernels(std::ostringstream& o) const;           // struct Model's functions
+  void public_functions(std::ostringstream& o) const;  // initial_state(), step(), ... forwarding to struct Model
   void velocity_helpers(std::ostringstream& o) const;
   void kinematics_function(std::ostringstream& o) const;
   void loads_stage(std::ostringstream& o) const;
@@ -161,19 +166,18 @@ class Emitter {
   void diagnostics(std::ostringstream& o) const;
   void reactions_function(std::ostringstream& o) const;
 
-  enum class Scheme { pcst, nps, baumgarte, blajer, ali3p };
-  Scheme scheme_kind() const {
-    if (m_.solver.scheme == "staggered-nps") return Scheme::nps;
-    if (m_.solver.scheme == "baumgarte") return Scheme::baumgarte;
-    if (m_.solver.scheme == "blajer") return Scheme::blajer;
-    if (m_.solver.scheme == "ali3p") return Scheme::ali3p;
-    return Scheme::pcst;
+  mbrt::Scheme scheme_kind() const { return a_.step.scheme; }
+  // The enumerator's name in generated code: staggered_pcst, ...
+  std::string scheme_identifier() const {
+    std::string s(mbrt::scheme_name(scheme_kind()));
+    std::replace(s.begin(), s.end(), '-', '_');
+    return s;
   }
 
   // emit_io.cpp: inputs (State::inputs, applied as loads) and outputs().
   bool has_inputs() const { return !m_.inputs.empty(); }
   bool has_outputs() const { return !m_.outputs.empty(); }
-  std::string loads_call() const { return has_inputs() ? "applied_loads(k, s.inputs, l)" : "applied_loads(k, l)"; }
+  std::string loads_call() const { return "applied_loads(k, s, l)"; }
   void input_declarations(std::ostringstream& o) const;   // index constants, ranges, safe values
   void output_declarations(std::ostringstream& o) const;  // one flat array; each signal's first index and count
   std::string input_target(const Input& in) const;
@@ -187,19 +191,19 @@ class Emitter {
   std::string stabilization_term() const;  // of S lambda = B M^-1 F + quad + stabilization
   void explicit_stage_function(std::ostringstream& o) const;
   // staggered-pcst's position stage (RATTLE's position step) after the drift.
-  bool rattle() const { return scheme_kind() == Scheme::pcst && blocks() > 0; }
+  bool rattle() const { return a_.step.position_stage; }
   void position_stage_constants(std::ostringstream& o) const;
-  void set_positions_function(std::ostringstream& o) const;
-  void position_stage(std::ostringstream& o) const;
-  void newton_matrix(std::ostringstream& o) const;  // emit_newton.cpp
+  void correct_positions_function(std::ostringstream& o) const;  // blajer
+  void newton_matrix_type(std::ostringstream& o) const;  // emit_newton.cpp
+  void newton_matrix(std::ostringstream& o) const;
   void staggered_stages(std::ostringstream& o) const;
-  void staggered_step(std::ostringstream& o) const;
 
   // emit_planar.cpp: namespace planar { ... step(s) } from a planar emitter.
   void planar_stages(std::ostringstream& o) const;
   void planar_constants(std::ostringstream& o) const;
+  void planar_types(std::ostringstream& o) const;  // in the header's detail::planar
   void planar_velocity_helpers(std::ostringstream& o) const;
-  void planar_explicit_stage(std::ostringstream& o) const;
+  void planar_explicit_stage(std::ostringstream& o) const;  // kick and drift
   void planar_force_load(std::ostringstream& o, const Force& f, const std::string& n) const;
   void store_multipliers(std::ostringstream& o) const;
 
@@ -209,7 +213,7 @@ class Emitter {
   bool carries_parent_axes(const TreeBody& tb) const;
   std::string h_transpose_times(const TreeBody& tb, const std::string& x) const;
   std::string h_times(const TreeBody& tb, const std::string& z) const;
-  void nps_workspace(std::ostringstream& o) const;
+  void nps_workspace(std::ostringstream& o) const;  // TreeSystem, in the header
   void nps_factorize(std::ostringstream& o) const;
   void nps_tree_solve(std::ostringstream& o, bool with_targets) const;
   void nps_tree_multipliers(std::ostringstream& o) const;
@@ -223,7 +227,6 @@ class Emitter {
   bool ali3p_weighted() const { return scheme_kind() == Scheme::ali3p && a_.ali3p.delta_f != 0.0; }
   void ali3p_constants(std::ostringstream& o) const;
   void ali3p_stages(std::ostringstream& o) const;
-  void ali3p_step(std::ostringstream& o) const;
 };
 
 }  // namespace mbrt::codegen

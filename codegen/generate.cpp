@@ -17,7 +17,15 @@ namespace {
 
 void apply_overrides(Model& model, const GenerateOptions& options) {
   const SourceLocation cli{model.file, 0, 0};
-  if (options.scheme) model.solver.scheme = *options.scheme;
+  if (options.scheme) {
+    const std::optional<mbrt::Scheme> scheme = mbrt::scheme_from_name(*options.scheme);
+    if (!scheme) {
+      std::string names;
+      for (std::string_view n : mbrt::kSchemeNames) names += (names.empty() ? "" : ", ") + std::string(n);
+      throw ModelError(cli, "--scheme", "expected one of: " + names + ", got '" + *options.scheme + "'");
+    }
+    model.solver.scheme = *scheme;
+  }
   if (options.name) {
     const std::string& n = *options.name;
     const bool valid = !n.empty() && n[0] >= 'a' && n[0] <= 'z' &&

@@ -11,6 +11,8 @@
 
 #include <Eigen/Core>
 
+#include <mbrt/scheme.hpp>
+
 namespace mbrt::codegen {
 
 // Where a value came from, for error messages: "file:line:column".
@@ -178,7 +180,7 @@ struct Ali3pSettings {
 };
 
 struct SolverSettings {
-  std::string scheme = "staggered-pcst";
+  mbrt::Scheme scheme = mbrt::Scheme::staggered_pcst;
   double step = 1.0e-3;
   int euler_updates = 2;
   // staggered-pcst: regularization of S relative to its largest diagonal

@@ -74,7 +74,7 @@ const std::vector<std::pair<std::string, OutputType>> kOutputTypes = {
     {"joint_velocity", OutputType::joint_velocity},
     {"body_pose", OutputType::body_pose},
     {"body_velocity", OutputType::body_velocity}};
-const Keys kSchemes = {"staggered-pcst", "staggered-nps", "ali3p", "blajer", "baumgarte"};
+const Keys kSchemes(mbrt::kSchemeNames.begin(), mbrt::kSchemeNames.end());
 
 // Axes shorter than this cannot be normalized meaningfully.
 constexpr double kMinAxisLength = 1e-12;
@@ -816,7 +816,7 @@ SolverSettings parse_solver(const Value& v) {
   SolverSettings solver;
   if (v.node.IsNull()) return solver;  // "solver:" with nothing under it: defaults
   const Section s(v, kSolverKeys);
-  if (auto x = s.find("scheme")) solver.scheme = read_choice(*x, kSchemes);
+  if (auto x = s.find("scheme")) solver.scheme = *mbrt::scheme_from_name(read_choice(*x, kSchemes));
   if (auto x = s.find("step")) solver.step = read_positive(*x);
   if (auto x = s.find("euler_updates")) solver.euler_updates = read_integer_at_least(*x, 1);
   if (auto x = s.find("penalty")) solver.penalty = read_non_negative(*x);

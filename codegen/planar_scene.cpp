@@ -1,5 +1,6 @@
 #include "planar_scene.hpp"
 
+#include <algorithm>
 #include <array>
 
 namespace mbrt::codegen {
@@ -159,10 +160,14 @@ std::string joined(const std::vector<std::string>& reasons) {
 PlanarPlan plan_planar(const Model& model, const Analysis& a) {
   PlanarPlan plan;
   if (!a.specialize.planar) return plan;
-  const std::string& scheme = model.solver.scheme;
-  if (scheme != "staggered-pcst" && scheme != "baumgarte" && scheme != "blajer") {
-    plan.refusal = "not for scheme " + scheme;
-    return plan;
+  switch (model.solver.scheme) {
+    case mbrt::Scheme::staggered_pcst:
+    case mbrt::Scheme::baumgarte:
+    case mbrt::Scheme::blajer: break;
+    case mbrt::Scheme::staggered_nps:
+    case mbrt::Scheme::ali3p:
+      plan.refusal = "not for scheme " + std::string(mbrt::scheme_name(model.solver.scheme));
+      return plan;
   }
   std::vector<std::string> reasons;
   for (const int normal : {2, 1, 0}) {  // x-y first: the plane of most planar benchmarks
@@ -170,6 +175,13 @@ PlanarPlan plan_planar(const Model& model, const Analysis& a) {
     reasons.push_back(refusal(Plane{normal}, model, a, plan));
     if (reasons.back().empty()) {
       plan.applies = true;
+      // Turning about the normal, a principal axis, no body has a gyroscopic
+      // torque: without dampers (and Baumgarte's velocity term) one implicit pass.
+      const bool damped = std::any_of(model.forces.begin(), model.forces.end(), [](const Force& f) {
+        return f.type == ForceType::spring_damper && f.damping != 0.0;
+      });
+      const bool baumgarte = model.solver.scheme == mbrt::Scheme::baumgarte && plan.constraint_rows > 0;
+      plan.stages = a.specialize.single_stage && !damped && !baumgarte ? 1 : 2;
       return plan;
     }
   }

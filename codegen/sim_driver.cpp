@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 
 #include MBRT_MODEL_HEADER
@@ -123,6 +124,7 @@ int main(int argc, char** argv) {
     write_header(csv, opt);
   }
   model::State s = model::initial_state();
+  const auto workspace = std::make_unique<model::Workspace>();  // large models: not on the stack
   const double e0 = model::energy(s).total();
   const long steps = std::lround(opt.t_end / model::kStep);
   double max_pos = 0.0, max_vel = 0.0, max_acc = 0.0, max_quat = 0.0;
@@ -145,7 +147,7 @@ int main(int argc, char** argv) {
   while (done < steps && status == mbrt::StepStatus::ok) {
     const long chunk = std::min(opt.every - done % opt.every, steps - done);
     const auto t0 = clock::now();
-    for (long i = 0; i < chunk && status == mbrt::StepStatus::ok; ++i, ++done) status = model::step(s);
+    for (long i = 0; i < chunk && status == mbrt::StepStatus::ok; ++i, ++done) status = model::step(s, *workspace);
     const auto t1 = clock::now();
     stepping_s += std::chrono::duration<double>(t1 - t0).count();
     if (done % opt.every == 0 || done == steps) sample();

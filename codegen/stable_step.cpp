@@ -18,9 +18,14 @@ namespace {
 // rad per step (energy within 1 % to 0.5, lost beyond 0.85); the schemes whose constraint forces are explicit in the position
 // (staggered-nps, baumgarte, blajer) lose a fast pivoted body at about 0.1;
 // ali3p stays finite but dissipates beyond about 0.3.
-double rotation_per_step(const std::string& scheme) {
-  if (scheme == "staggered-pcst") return 0.7;
-  if (scheme == "ali3p") return 0.3;
+double rotation_per_step(mbrt::Scheme scheme) {
+  switch (scheme) {
+    case mbrt::Scheme::staggered_pcst: return 0.7;
+    case mbrt::Scheme::ali3p: return 0.3;
+    case mbrt::Scheme::staggered_nps:
+    case mbrt::Scheme::blajer:
+    case mbrt::Scheme::baumgarte: return 0.1;
+  }
   return 0.1;
 }
 
@@ -161,18 +166,18 @@ std::string stable_step_warning(const Model& m, const StableStep& s) {
   if (!s.exceeded) return "";
   std::ostringstream o;
   o << "warning: " << m.name << ": step " << format(m.solver.step) << " s is above the stable step "
-    << format(s.stable_step) << " s that " << m.solver.scheme << " is estimated to allow: ";
+    << format(s.stable_step) << " s that " << mbrt::scheme_name(m.solver.scheme) << " is estimated to allow: ";
   const bool rotation = s.fastest_rotation > 0.0 && s.rotation_per_step / s.fastest_rotation <= s.stable_step * 1.0000001;
   if (rotation) {
     o << "body " << s.fastest_body << " could turn at " << format(s.fastest_rotation) << " rad/s about the joint it hangs from"
-      << " with the " << format(s.energy_bound) << " J the scene can release, and " << m.solver.scheme
+      << " with the " << format(s.energy_bound) << " J the scene can release, and " << mbrt::scheme_name(m.solver.scheme)
       << " stays finite to about " << format(s.rotation_per_step) << " rad per step";
   } else {
     o << s.stiffest_element << " oscillates at " << format(s.stiffest_frequency)
       << " rad/s and the explicit stage needs h * omega < 2";
   }
   o << " (docs/stability.md)";
-  if (m.solver.scheme != "staggered-pcst" && rotation) o << "; staggered-pcst allows about 0.7 rad per step";
+  if (m.solver.scheme != mbrt::Scheme::staggered_pcst && rotation) o << "; staggered-pcst allows about 0.7 rad per step";
   return o.str();
 }
 

@@ -49,7 +49,7 @@ void read_calibration(StepReport& r) {
 StepReport report_step(const Generated& g, const SimOptions& options) {
   StepReport r;
   r.model = g.model.name;
-  r.scheme = g.model.solver.scheme;
+  r.scheme = mbrt::scheme_name(g.model.solver.scheme);
   for (const auto& [name, flag] : kSpecializationNames) {
     if (!(options.generate.specialize.*flag)) r.turned_off.push_back(name);
   }

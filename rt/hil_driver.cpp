@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include <mbrt/runtime.hpp>
+#include <mbrt/schemes/state_checks.hpp>
 #include <mbrt/rt/can_bus.hpp>
 #include <mbrt/rt/can_command_assembler.hpp>
 #include <mbrt/rt/candump_log.hpp>
@@ -82,16 +82,10 @@ Options parse(int argc, char** argv) {
 
 std::int64_t seconds_to_ns(double s) { return std::llround(s * 1e9); }
 
-bool finite(const model::State& s) {
-  bool ok = std::isfinite(s.t);
-  for (const mbrt::RigidState& x : s.rigid) ok = ok && mbrt::all_finite(x.r) && mbrt::all_finite(x.p) && mbrt::all_finite(x.v) && mbrt::all_finite(x.w);
-  for (const mbrt::ParticleState& x : s.particle) ok = ok && mbrt::all_finite(x.r) && mbrt::all_finite(x.v);
-  return ok;
-}
-
 // The loop's data, all allocated before the first cycle.
 struct Loop {
   model::State state = model::initial_state();
+  model::Workspace workspace;  // what step() works on, kWorkspaceBytes
   model::Outputs outputs{};
   model::StateMessage state_message{};
   model::CommandMessage command_message{};
@@ -199,7 +193,9 @@ void send_can_state(Loop& loop, CanLink& link, std::int64_t cycle) {
 }
 
 int run(const Options& opt) {
-  Loop loop({seconds_to_ns(opt.command_timeout_s), seconds_to_ns(opt.max_command_age_s)});
+  // On the heap: a large model's workspace would not fit a small thread stack.
+  const auto loop_memory = std::make_unique<Loop>(GateTimes{seconds_to_ns(opt.command_timeout_s), seconds_to_ns(opt.max_command_age_s)});
+  Loop& loop = *loop_memory;
   HilRunStats& stats = loop.stats;
   stats.model = model::kName;
   const bool can = !opt.link.can_bus.empty();
@@ -213,7 +209,8 @@ int run(const Options& opt) {
   if (can) can_link = std::make_unique<CanLink>(opt.link);
   else bridge = std::make_unique<LcmBridge>(opt.link.lcm_url, opt.link.command_channel);
   loop.published_seq.fill(-1);
-  stats.realtime = prepare_realtime(opt.realtime);
+  stats.workspace_bytes = model::kWorkspaceBytes;
+  stats.realtime = prepare_realtime(opt.realtime, &loop.workspace, model::kWorkspaceBytes);
 
   const std::int64_t cycles = std::llround(opt.link.duration_s * opt.link.rate_hz);
   PeriodicClock clock(std::llround(1e9 / opt.link.rate_hz));
@@ -223,7 +220,7 @@ int run(const Options& opt) {
     else bridge->receive(&on_command, &loop, kMaxCommandsPerCycle);
     loop.state.inputs = loop.gate.inputs_for_cycle(monotonic_ns());
     const std::int64_t step_start = monotonic_ns();
-    for (int k = 0; k < stats.steps_per_cycle; ++k) stats.step_failures += model::step(loop.state) != mbrt::StepStatus::ok;
+    for (int k = 0; k < stats.steps_per_cycle; ++k) stats.step_failures += model::step(loop.state, loop.workspace) != mbrt::StepStatus::ok;
     stats.step_ns.record(monotonic_ns() - step_start);
     if (cycle % opt.publish_every == 0) {
       if (can) send_can_state(loop, *can_link, cycle);
@@ -237,7 +234,7 @@ int run(const Options& opt) {
   stats.deadline_misses = clock.deadline_misses();
   stats.overruns = clock.overruns();
   stats.commands = loop.gate.counts();
-  stats.state_finite = finite(loop.state);
+  stats.state_finite = mbrt::schemes::finite(loop.state);
 
   const std::string json = to_json(stats);
   if (!write_report(json, opt.link.report)) return 1;

@@ -33,6 +33,7 @@ std::string to_json(const HilRunStats& s) {
   std::ostringstream o;
   o << "{\n  \"model\": " << quoted(s.model) << ",\n  \"transport\": " << quoted(s.transport)
     << ",\n  \"rate_hz\": " << s.rate_hz << ",\n  \"steps_per_cycle\": " << s.steps_per_cycle
+    << ",\n  \"workspace_bytes\": " << s.workspace_bytes
     << ",\n  \"cycles\": " << s.cycles << ",\n  \"deadline_misses\": " << s.deadline_misses
     << ",\n  \"overruns\": " << s.overruns << ",\n  \"step_ns\": " << percentiles(s.step_ns)
     << ",\n  \"cycle_ns\": " << percentiles(s.cycle_ns) << ",\n  \"wake_jitter_ns\": " << percentiles(s.wake_jitter_ns)

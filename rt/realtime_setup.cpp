@@ -12,12 +12,24 @@ namespace mbrt::rt {
 
 namespace {
 
+constexpr std::size_t kPage = 4096;
+
 // Touch the stack the loop will use, so its pages are mapped (and, with
 // mlockall, locked) before the first cycle rather than faulted in during one.
+// The step keeps its large data in the caller's workspace; on the stack are
+// its per-body vectors and the loop's own frames.
 void prefault_stack() {
   constexpr std::size_t kBytes = 512 * 1024;
   volatile unsigned char page[kBytes];
-  for (std::size_t i = 0; i < kBytes; i += 4096) page[i] = 0;
+  for (std::size_t i = 0; i < kBytes; i += kPage) page[i] = 0;
+}
+
+// Write every page of the workspace once (its contents do not matter: the
+// step overwrites what it reads).
+void prefault(void* memory, std::size_t bytes) {
+  auto* p = static_cast<volatile unsigned char*>(memory);
+  for (std::size_t i = 0; i < bytes; i += kPage) p[i] = 0;
+  if (bytes > 0) p[bytes - 1] = 0;
 }
 
 void warn(RealtimeStatus& status, const std::string& what) {
@@ -27,12 +39,13 @@ void warn(RealtimeStatus& status, const std::string& what) {
 
 }  // namespace
 
-RealtimeStatus prepare_realtime(const RealtimeOptions& options) {
+RealtimeStatus prepare_realtime(const RealtimeOptions& options, void* workspace, std::size_t bytes) {
   RealtimeStatus status;
   // Stack first: grown after mlockall(MCL_FUTURE), it must stay within
   // RLIMIT_MEMLOCK or the process dies of SIGSEGV; before, mlockall counts
   // it and fails cleanly if the limit is too small.
   prefault_stack();
+  prefault(workspace, bytes);
   status.memory_locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
   if (!status.memory_locked) {
     const std::string why = std::strerror(errno);

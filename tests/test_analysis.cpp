@@ -122,7 +122,7 @@ TEST_CASE("joints and torques that need orientation are refused on particles") {
 
 TEST_CASE("staggered-nps: the tree takes each link's pin, the closing joint becomes the cut rows") {
   Model m = chain(4, true);
-  m.solver.scheme = "staggered-nps";
+  m.solver.scheme = mbrt::Scheme::staggered_nps;
   const Analysis a = analyse(m);
   REQUIRE(a.tree.order.size() == 4);
   for (int i = 0; i < 4; ++i) {
@@ -171,7 +171,7 @@ solver: {scheme: staggered-nps}
 
 TEST_CASE("staggered-nps refuses more cut rows than it solves densely, naming staggered-pcst") {
   Model m = chain(2, false);
-  m.solver.scheme = "staggered-nps";
+  m.solver.scheme = mbrt::Scheme::staggered_nps;
   // Eleven extra spherical joints between the two links: 33 cut rows.
   for (int k = 0; k < 11; ++k) {
     Joint j = m.joints[1];

@@ -203,7 +203,7 @@ TEST_CASE("a model using every key, body, joint and force type parses into the s
   CHECK(m.forces[4].point == Eigen::Vector3d(-1, 0, 0));  // default: the body's position
   CHECK(m.forces[4].where.line == 43);
 
-  CHECK(m.solver.scheme == "ali3p");
+  CHECK(m.solver.scheme == mbrt::Scheme::ali3p);
   CHECK(m.solver.step == 2.0e-3);
   CHECK(m.solver.euler_updates == 3);
   CHECK(m.solver.penalty == 1.0e-8);

@@ -161,7 +161,7 @@ TEST_CASE("planar coordinates: a four-bar under a damped spring, torques, a poin
 TEST_CASE("planar coordinates in baumgarte and blajer: the loaded four-bar equals the spatial code") {
   const auto four_bar_in = [](const char* scheme) {
     mbrt::codegen::Model m = mbrt::codegen::load_model(std::string(MBRT_TEST_MODELS) + "/loaded_four_bar.yaml");
-    m.solver.scheme = scheme;
+    m.solver.scheme = *mbrt::scheme_from_name(scheme);
     return m;
   };
   CHECK(mbrt::codegen::analyse(four_bar_in("baumgarte")).planar.applies);
@@ -294,7 +294,7 @@ TEST_CASE("planar coordinates do not apply to the heavy top, nor to the four-bar
   CHECK_FALSE(top.planar.applies);
   CHECK_FALSE(top.planar.refusal.empty());
   Model four_bar = load_model(std::string(MBRT_TEST_MODELS) + "/four_bar.yaml");
-  four_bar.solver.scheme = "ali3p";
+  four_bar.solver.scheme = mbrt::Scheme::ali3p;
   const Analysis ali3p = analyse(four_bar);
   CHECK_FALSE(ali3p.planar.applies);
   CHECK(ali3p.planar.refusal == "not for scheme ali3p");

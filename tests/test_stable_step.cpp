@@ -56,7 +56,7 @@ TEST_CASE("a body spinning fast on a pivot is beyond the schemes with explicit c
   mbrt::codegen::Model m = mbrt::codegen::load_model(spinner);
   CHECK_FALSE(estimate_stable_step(m).exceeded);  // staggered-pcst at 1 ms: 0.3 rad per step
   for (const char* scheme : {"staggered-nps", "baumgarte", "blajer"}) {
-    m.solver.scheme = scheme;
+    m.solver.scheme = *mbrt::scheme_from_name(scheme);
     const auto s = estimate_stable_step(m);
     CHECK(s.exceeded);
     const std::string w = mbrt::codegen::stable_step_warning(m, s);

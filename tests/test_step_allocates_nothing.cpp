@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include <mbrt/rt/can_command_assembler.hpp>
@@ -41,12 +42,13 @@ TEST_CASE("the allocation counter sees heap allocations") {
   do {                                                                      \
     namespace m = mbrt::models::model;                                      \
     m::State s = m::initial_state();                                        \
-    m::step(s); /* warm up outside the counted region */                   \
+    static m::Workspace w; /* caller-owned, as a real-time loop keeps it */ \
+    m::step(s, w); /* warm up outside the counted region */                \
     long bad = 0;                                                           \
     long seen = 0;                                                          \
     {                                                                       \
       AllocationCounter counter;                                            \
-      for (long i = 0; i < (steps); ++i) bad += m::step(s) != mbrt::StepStatus::ok; \
+      for (long i = 0; i < (steps); ++i) bad += m::step(s, w) != mbrt::StepStatus::ok; \
       seen = counter.count();                                               \
     }                                                                       \
     CHECK(bad == 0);                                                        \
@@ -60,6 +62,34 @@ TEST_CASE("step() allocates nothing over 1e5 steps") {
   CHECK_NO_ALLOCATION(four_bar_nps, 100000);  // staggered-nps: a tree and cut rows
   CHECK_NO_ALLOCATION(four_bar_general, 100000);    // --no-specialize
   CHECK_NO_ALLOCATION(two_masses_special, 100000);  // gravity-free, an unloaded body
+}
+
+// A workspace is scratch memory: a step must give the same state whatever
+// the workspace held before, so one workspace can serve any number of states.
+#define CHECK_WORKSPACE_IS_SCRATCH(model)                                          \
+  do {                                                                             \
+    namespace m = mbrt::models::model;                                             \
+    CHECK(m::kWorkspaceBytes == sizeof(m::Workspace));                            \
+    m::State a = m::initial_state(), b = a;                                        \
+    static m::Workspace clean, dirty;                                              \
+    for (int i = 0; i < 200; ++i) {                                                \
+      /* poison: every byte 0xff (a NaN in every double) */                        \
+      std::memset(static_cast<void*>(&dirty), 0xff, sizeof dirty);                 \
+      REQUIRE(m::step(a, clean) == mbrt::StepStatus::ok);                          \
+      REQUIRE(m::step(b, dirty) == mbrt::StepStatus::ok);                          \
+    }                                                                              \
+    CHECK(std::memcmp(static_cast<const void*>(&a.rigid), static_cast<const void*>(&b.rigid), sizeof a.rigid) == 0); \
+    CHECK(std::memcmp(static_cast<const void*>(&a.particle), static_cast<const void*>(&b.particle), sizeof a.particle) == 0); \
+    CHECK(a.lambda == b.lambda);                                                   \
+  } while (false)
+
+TEST_CASE("the caller's workspace carries nothing from one step to the next") {
+  CHECK_WORKSPACE_IS_SCRATCH(a01_pendulum);
+  CHECK_WORKSPACE_IS_SCRATCH(heavy_top);
+  CHECK_WORKSPACE_IS_SCRATCH(four_bar);
+  CHECK_WORKSPACE_IS_SCRATCH(four_bar_nps);
+  CHECK_WORKSPACE_IS_SCRATCH(four_bar_general);
+  CHECK_WORKSPACE_IS_SCRATCH(two_masses_special);
 }
 
 TEST_CASE("the HIL cycle around the step allocates nothing") {

@@ -32,6 +32,9 @@
 
 namespace {
 
+// The step's working memory, owned here as a real-time loop owns it.
+model::Workspace workspace;
+
 namespace model = mbrt::models::wcet_model;
 using Clock = std::chrono::steady_clock;
 
@@ -94,7 +97,7 @@ int timed(const char* mode, long n, const char* histogram, size_t evict_mb, bool
   std::vector<double> ns(static_cast<size_t>(n));
   CacheEvictor evictor(evict_mb);
   model::State s = model::initial_state();
-  for (int i = 0; i < 10000; ++i) model::step(s);  // warm caches and branch predictors
+  for (int i = 0; i < 10000; ++i) model::step(s, workspace);  // warm caches and branch predictors
   long failed = 0;
   auto burst = Clock::now();
   for (size_t i = 0; i < ns.size(); ++i) {
@@ -105,7 +108,7 @@ int timed(const char* mode, long n, const char* histogram, size_t evict_mb, bool
     }
     if (evict_mb > 0) evictor.evict();
     const auto a = Clock::now();
-    failed += model::step(s) != mbrt::StepStatus::ok;
+    failed += model::step(s, workspace) != mbrt::StepStatus::ok;
     ns[i] = ns_between(a, Clock::now());
   }
   std::sort(ns.begin(), ns.end());
@@ -120,7 +123,7 @@ int timed(const char* mode, long n, const char* histogram, size_t evict_mb, bool
 // memory. A refused step would make it the plain warm run under another
 // name, so that is an error here rather than the loop's warning.
 int realtime(long n, const char* histogram, int priority, int cpu) {
-  const mbrt::rt::RealtimeStatus status = mbrt::rt::prepare_realtime({priority, cpu});
+  const mbrt::rt::RealtimeStatus status = mbrt::rt::prepare_realtime({priority, cpu}, &workspace, model::kWorkspaceBytes);
   if (!status.fifo || !status.pinned || !status.memory_locked) {
     std::fprintf(stderr, "wcet realtime: not permitted here:\n%s", status.warnings.c_str());
     return 1;
@@ -133,7 +136,7 @@ int instructions(long n, long every) {
   for (long i = 0; i < n; ++i) {
     const bool sampled = i % every == 0;
     if (sampled) CALLGRIND_TOGGLE_COLLECT;
-    model::step(s);
+    model::step(s, workspace);
     if (sampled) {
       CALLGRIND_TOGGLE_COLLECT;
       CALLGRIND_DUMP_STATS;

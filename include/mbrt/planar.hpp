@@ -174,17 +174,6 @@ inline void planar_drift(ParticleState& x, double h) noexcept {
   set_in_plane<Normal>(in_plane<Normal>(x.r) + h * in_plane<Normal>(x.v), x.r);
 }
 
-template <int Normal>
-inline void planar_explicit_update(RigidState& x, const RigidAcceleration& a, double h, int updates) noexcept {
-  planar_kick<Normal>(x, a, h);
-  planar_drift<Normal>(x, h, updates);
-}
-template <int Normal>
-inline void planar_explicit_update(ParticleState& x, const Vec3& a, double h) noexcept {
-  planar_kick<Normal>(x, a, h);
-  planar_drift<Normal>(x, h);
-}
-
 // Blajer's position correction of one body by dq = (dx, dy, dtheta): the
 // spatial one's body-frame increment about the normal, cayley_increment of
 // rotation.hpp acting on (e0, e_k).

@@ -1,8 +1,6 @@
 // Everything a generated model's implementation includes.
 #pragma once
 
-#include <cmath>
-
 #include "mbrt/dense_cholesky.hpp"
 #include "mbrt/forces.hpp"
 #include "mbrt/free_rotation.hpp"
@@ -13,10 +11,3 @@
 #include "mbrt/nonholonomic.hpp"
 #include "mbrt/planar.hpp"
 #include "mbrt/rotation.hpp"
-
-namespace mbrt {
-
-inline bool all_finite(const Vec3& x) noexcept { return std::isfinite(x.sum()); }
-inline bool all_finite(const Vec4& x) noexcept { return std::isfinite(x.sum()); }
-
-}  // namespace mbrt

@@ -1,6 +1,7 @@
 // What a HIL run measured, and its JSON form (written once, after the loop).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -15,6 +16,7 @@ struct HilRunStats {
   std::string transport;  // "lcm udpm://...", ...
   double rate_hz = 0.0;
   int steps_per_cycle = 1;
+  std::size_t workspace_bytes = 0;  // the step's caller-owned workspace
   std::int64_t cycles = 0;
   std::int64_t deadline_misses = 0;
   std::int64_t overruns = 0;

@@ -1,9 +1,11 @@
-// Process set-up for a real-time loop: lock memory, prefault the stack,
+// Process set-up for a real-time loop: lock memory, prefault the stack and
+// the step's workspace,
 // optionally SCHED_FIFO and CPU pinning. Each step that is not permitted
 // (no CAP_SYS_NICE, a small RLIMIT_MEMLOCK, ...) is skipped with a warning on
 // stderr; the loop then runs, with less protection from the rest of the machine.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace mbrt::rt {
@@ -20,6 +22,9 @@ struct RealtimeStatus {
   std::string warnings;  // one line per step that was skipped
 };
 
-RealtimeStatus prepare_realtime(const RealtimeOptions& options);
+// workspace, bytes: memory the loop's step works on (a generated model's
+// Workspace, kWorkspaceBytes), touched page by page before memory is locked so
+// the first cycles do not fault it in.
+RealtimeStatus prepare_realtime(const RealtimeOptions& options, void* workspace, std::size_t bytes);
 
 }  // namespace mbrt::rt

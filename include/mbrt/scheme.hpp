@@ -1,0 +1,31 @@
+// The integration schemes a model can be generated with (solver.scheme).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+namespace mbrt {
+
+enum class Scheme {
+  staggered_pcst,  // docs/staggered-pcst.md
+  staggered_nps,   // docs/staggered-nps.md
+  ali3p,           // docs/ali3p.md
+  blajer,          // docs/schemes.md
+  baumgarte,       // docs/schemes.md
+};
+
+// The names the model file and the command line use, one per Scheme in order.
+inline constexpr std::array<std::string_view, 5> kSchemeNames{"staggered-pcst", "staggered-nps", "ali3p", "blajer",
+                                                              "baumgarte"};
+
+inline constexpr std::string_view scheme_name(Scheme s) noexcept { return kSchemeNames[static_cast<int>(s)]; }
+
+inline std::optional<Scheme> scheme_from_name(std::string_view name) noexcept {
+  for (std::size_t i = 0; i < kSchemeNames.size(); ++i) {
+    if (kSchemeNames[i] == name) return static_cast<Scheme>(i);
+  }
+  return std::nullopt;
+}
+
+}  // namespace mbrt

@@ -1,0 +1,95 @@
+// The step of ali3p: index-3 augmented Lagrangian with the trapezoidal rule
+// or generalized-alpha, then velocity and acceleration projections (Dopico,
+// Gonzalez, Cuadrado & Kovecses 2014, "Determination of holonomic and
+// nonholonomic constraint reactions in an index-3 augmented Lagrangian
+// formulation with velocity and acceleration projections", J. Comput.
+// Nonlinear Dynam. 9; docs/ali3p.md).
+//
+// M is a generated model (struct Model in the model's source). It provides
+//   types     State, Workspace, Rows, BodyVectors;
+//   constants kStep, kNewtonIterations, kWeighted (generalized-alpha keeps
+//             M^-1 (B^T lambda - F) of the last step), kRheonomic, kAlpha,
+//             kTangentShift, kProjectionShift;
+//   kernels   kinematics, velocities_of, generalized_velocities, set_velocities,
+//             accelerations_of, set_accelerations, applied_loads, constraint_rows,
+//             factorize(c, shift), stacked_phi, stacked_phi_t, stacked_quad,
+//             newmark_update, newton_correction, constraint_minus_applied, project.
+// Workspace holds last_good (the state at t), k, c and l.
+#pragma once
+
+#include "mbrt/schemes/state_checks.hpp"
+#include "mbrt/step_status.hpp"
+
+namespace mbrt::schemes {
+
+template <class M>
+StepStatus ali3p_step(typename M::State& s, typename M::Workspace& w) noexcept {
+  using BodyVectors = typename M::BodyVectors;
+  using Rows = typename M::Rows;
+  const typename M::State& n = w.last_good;
+  w.last_good = s;
+  const BodyVectors u_n = M::generalized_velocities(n);
+  const BodyVectors a_n = M::accelerations_of(n);
+  s.t += M::kStep;
+
+  // Newton iterations on the accelerations from the predictor a = a_n
+  // (q = q_n + h u_n + h^2/2 a_n), the multipliers lambda* updated by
+  // alpha phi from the second iteration on (Dopico et al. 2014, sec. 3.3).
+  BodyVectors a = a_n;
+  BodyVectors u;
+  Rows lambda_star = n.ali3p_lambda_star;
+  bool positive = true;
+  for (int i = 0; i < M::kNewtonIterations; ++i) {
+    M::newmark_update(n, u_n, a_n, a, s, u);
+    M::kinematics(s, w.k);
+    M::constraint_rows(w.k, s.t, w.c);
+    const Rows phi = M::stacked_phi(w.c);
+    if (i > 0) lambda_star += M::kAlpha.cwiseProduct(phi);
+    M::applied_loads(w.k, s, w.l);
+    positive = M::factorize(w.c, M::kTangentShift) && positive;
+    if constexpr (M::kWeighted) {
+      M::newton_correction(w.c, w.l, lambda_star + M::kAlpha.cwiseProduct(phi), a_n, n.ali3p_force, a);
+    } else {
+      M::newton_correction(w.c, w.l, lambda_star + M::kAlpha.cwiseProduct(phi), a);
+    }
+  }
+
+  // The step's positions; the multipliers lambda* + alpha phi (eq. 36) are
+  // the dynamic part of the constraint forces and the next step's start.
+  M::newmark_update(n, u_n, a_n, a, s, u);
+  M::kinematics(s, w.k);
+  M::constraint_rows(w.k, s.t, w.c);
+  s.lambda = lambda_star + M::kAlpha.cwiseProduct(M::stacked_phi(w.c));
+  s.ali3p_lambda_star = s.lambda;
+  if constexpr (M::kWeighted) {
+    M::applied_loads(w.k, s, w.l);
+    s.ali3p_force = M::constraint_minus_applied(w.c, w.l, s.lambda);
+  }
+
+  // Velocity projection, then the acceleration projection with the
+  // acceleration terms at the projected velocities; its multiplier is the
+  // constraint forces' projection part (Q = Q_dyn + Q_acc, eq. 51).
+  positive = M::factorize(w.c, M::kProjectionShift) && positive;
+  if constexpr (M::kRheonomic) {
+    M::project(w.c, M::stacked_phi_t(w.c), u);
+  } else {
+    M::project(w.c, Rows::Zero(), u);
+  }
+  M::set_velocities(u, s);
+  w.k.vel = M::velocities_of(s);
+  M::constraint_rows(w.k, s.t, w.c);
+  s.lambda += M::project(w.c, M::stacked_quad(w.c), a);
+  M::set_accelerations(a, s);
+
+  if (!finite(s)) {
+    s = w.last_good;
+    return StepStatus::non_finite;
+  }
+  if (!positive) {
+    s = w.last_good;
+    return StepStatus::not_positive;
+  }
+  return StepStatus::ok;
+}
+
+}  // namespace mbrt::schemes

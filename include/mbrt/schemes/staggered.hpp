@@ -1,0 +1,207 @@
+// The step of the schemes built on the two-stage staggered explicit-implicit
+// integrator (Park & Chiou 1988, "Stabilization of computational procedures
+// for constrained dynamical systems", J. Guidance 11(4); docs/staggered-pcst.md):
+// staggered-pcst, staggered-nps, baumgarte and blajer.
+//
+// M is a generated model (struct Model in the model's source, spatial or
+// planar coordinates). It provides
+//   types     State, Workspace, Rows, BodyVectors;
+//   constants kScheme, kStep, kStages (implicit passes), kPositionStage,
+//             kPositionIterations, kCorrections (blajer);
+//   kernels   kinematics, velocities_of, generalized_velocities, set_velocities,
+//             accelerations_of, applied_loads, free_accelerations, kick, drift,
+//             constraint_rows, constraint_directions, factorize, solve,
+//             stacked_phi, velocity_residual, subtract_constraint_forces,
+//             constraint_forces; with the position stage factorize_newton and
+//             solve_newton; staggered-nps factorize_tree, factorize_cut and its
+//             implicit_stage; blajer correct_positions.
+// Workspace holds what one step works on: last_good (State), k (kinematics),
+// c (constraint system at t + h), c0 (at t, position stage), g (Newton matrix,
+// position stage), t (tree system, staggered-nps) and l (loads).
+#pragma once
+
+#include "mbrt/scheme.hpp"
+#include "mbrt/schemes/state_checks.hpp"
+#include "mbrt/step_status.hpp"
+
+namespace mbrt::schemes {
+
+// (c, l, u_half) => (u): staggered-pcst's implicit stage. The end-of-step
+// velocities satisfy the velocity constraints, regularized by the penalty eps
+// (docs/staggered-pcst.md eq. 5):
+//   (h/2) (S + 2 eps/h I) mu = B u_hat,  u = u_hat - h/2 M^-1 B^T mu.
+template <class M>
+void implicit_stage(const typename M::ConstraintSystem& c, const typename M::Loads& l,
+                    const typename M::BodyVectors& u_half, typename M::BodyVectors& u) noexcept {
+  constexpr double h = M::kStep;
+  const typename M::BodyVectors a_free = M::free_accelerations(l);
+  for (std::size_t b = 0; b < u.size(); ++b) u[b] = u_half[b] + (0.5 * h) * a_free[b];
+  typename M::Rows mu = (2.0 / h) * M::velocity_residual(c, u);
+  M::solve(c, mu);
+  M::subtract_constraint_forces(c, mu, 0.5 * h, u);
+}
+
+// (w.c0, w.c, u_kick, w.last_good) => (s, w.k, w.c rows): the position stage.
+// The first half kick's constraint forces act along M^-1 B(q(t))^T; their
+// multipliers are corrected so that the drift lands on Phi(q(t + h)) = 0
+// (RATTLE's position step: Andersen 1983, "Rattle: a velocity version of the
+// Shake algorithm", J. Comput. Phys. 52, eqs. 2.6-2.9), by Newton steps with
+// the matrix G = B(q*) M^-1 B(q(t))^T of the first drift q*. Correcting along
+// B(q(t))^T rather than B(q(t + h))^T is what keeps the energy of
+// fast-turning bodies bounded (docs/stability.md).
+template <class M>
+void position_stage(typename M::BodyVectors& u_kick, typename M::State& s, typename M::Workspace& w) noexcept {
+  M::factorize_newton(w.c0, w.c, w.g);
+  for (int i = 0; i < M::kPositionIterations; ++i) {
+    typename M::Rows x = M::stacked_phi(w.c);
+    typename M::Rows y = x;
+    M::solve_newton(w.g, x);
+    // G is close to singular where a long chain turns by more than its softest
+    // modes allow; a Newton step larger than S(q*)'s is then not trusted.
+    M::solve(w.c, y);
+    if (!(x.squaredNorm() <= 4.0 * y.squaredNorm())) x = y;
+    M::subtract_constraint_forces(w.c0, x, 1.0 / M::kStep, u_kick);
+    set_positions(w.last_good, s);
+    M::set_velocities(u_kick, s);
+    M::drift(s);
+    M::kinematics(s, w.k);
+    if (i + 1 < M::kPositionIterations) M::constraint_rows(w.k, s.t, w.c);
+  }
+}
+
+// (c, s) => (s): blajer's mass-orthogonal velocity correction (Blajer 1997,
+// "A projection method approach to constrained dynamic analysis", eq. 40),
+// du = -M^-1 B^T S^-1 B u.
+template <class M>
+void correct_velocities(const typename M::ConstraintSystem& c, typename M::State& s) noexcept {
+  typename M::BodyVectors u = M::generalized_velocities(s);
+  typename M::Rows x = M::velocity_residual(c, u);
+  M::solve(c, x);
+  M::subtract_constraint_forces(c, x, 1.0, u);
+  M::set_velocities(u, s);
+}
+
+// staggered-nps factorizes the tree and the cut rows where the others factorize S.
+template <class M>
+bool factorize(typename M::Workspace& w) noexcept {
+  if constexpr (M::kScheme == Scheme::staggered_nps) {
+    bool positive = M::factorize_tree(w.k, w.c, w.t);
+    if constexpr (M::kCutRows > 0) positive = M::factorize_cut(w.c, w.t) && positive;
+    return positive;
+  } else {
+    return M::factorize(w.c);
+  }
+}
+
+// (s, accelerations at t) => (s at t + h, its accelerations and multipliers).
+// Allocates nothing, throws nothing, fixed work; on a non-finite result or a
+// lost factorization s keeps its old value.
+template <class M>
+StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexcept {
+  using BodyVectors = typename M::BodyVectors;
+  constexpr double h = M::kStep;
+  constexpr bool index1 = M::kScheme == Scheme::baumgarte || M::kScheme == Scheme::blajer;
+  w.last_good = s;
+  const BodyVectors a_old = M::accelerations_of(s);
+  bool positive = true;
+  if constexpr (M::kPositionStage) {
+    // Directions of the first half kick's constraint forces, at q(t).
+    M::kinematics(s, w.k);
+    M::constraint_rows(w.k, s.t, w.c0);
+    M::constraint_directions(w.c0);
+    M::kick(s);
+    BodyVectors u_kick = M::generalized_velocities(s);
+    M::drift(s);
+    // Constraint terms at the drifted positions, factorized once per step; the
+    // position stage moves the positions onto the constraints and keeps the factor.
+    M::kinematics(s, w.k);
+    M::constraint_rows(w.k, s.t, w.c);
+    positive = M::factorize(w.c);
+    position_stage<M>(u_kick, s, w);
+  } else {
+    M::kick(s);
+    M::drift(s);
+  }
+  const BodyVectors u_half = M::generalized_velocities(s);
+  if constexpr (!M::kPositionStage) M::kinematics(s, w.k);
+
+  if constexpr (!index1) {
+    // Constraint terms at the new positions. The quadratic terms are taken at
+    // the predicted next half-step velocity u_half + h a_old, which the next
+    // explicit stage will drift with.
+    BodyVectors u = u_half;
+    for (std::size_t b = 0; b < u.size(); ++b) u[b] += h * a_old[b];
+    M::set_velocities(u, s);
+    w.k.vel = M::velocities_of(s);
+    M::constraint_rows(w.k, s.t, w.c);
+    if constexpr (M::kPositionStage) {
+      M::constraint_directions(w.c);  // the factor stays that of the first drift
+    } else {
+      positive = factorize<M>(w);
+    }
+    // Implicit stages: the first evaluates velocity-dependent loads at the
+    // predicted end-of-step velocities u_half + h/2 a_old, the next ones at
+    // the last result.
+    for (std::size_t b = 0; b < u.size(); ++b) u[b] = u_half[b] + (0.5 * h) * a_old[b];
+    for (int stage = 0; stage < M::kStages; ++stage) {
+      M::set_velocities(u, s);
+      w.k.vel = M::velocities_of(s);
+      M::applied_loads(w.k, s, w.l);
+      if constexpr (M::kScheme == Scheme::staggered_nps) {
+        M::implicit_stage(w.c, w.t, w.l, u_half, u);
+      } else {
+        implicit_stage<M>(w.c, w.l, u_half, u);
+      }
+    }
+    M::set_velocities(u, s);
+    if constexpr (M::kScheme == Scheme::staggered_nps) {
+      M::constraint_forces(w.c, w.t, w.l, M::stacked_phi(w.c), s);
+    } else {
+      M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);
+    }
+  } else {
+    // Constraint terms at the new positions, factorized once per step, with
+    // the quadratic terms at the predicted end-of-step velocity.
+    BodyVectors u = u_half;
+    for (std::size_t b = 0; b < u.size(); ++b) u[b] += (0.5 * h) * a_old[b];
+    M::set_velocities(u, s);
+    w.k.vel = M::velocities_of(s);
+    M::constraint_rows(w.k, s.t, w.c);
+    positive = M::factorize(w.c);
+    const typename M::Rows phi = M::stacked_phi(w.c);
+    // Implicit stages, fixed-point passes on u = u_half + h/2 a(t + h, u).
+    for (int stage = 0; stage < M::kStages; ++stage) {
+      M::set_velocities(u, s);
+      w.k.vel = M::velocities_of(s);
+      M::applied_loads(w.k, s, w.l);
+      M::constraint_forces(w.c, w.l, phi, s);
+      const BodyVectors a = M::accelerations_of(s);
+      for (std::size_t b = 0; b < u.size(); ++b) u[b] = u_half[b] + (0.5 * h) * a[b];
+    }
+    M::set_velocities(u, s);
+    if constexpr (M::kScheme == Scheme::blajer) {
+      // Post-step corrections, a fixed number for positions, then velocities.
+      for (int i = 0; i < M::kCorrections; ++i) {
+        if (i > 0) {
+          M::kinematics(s, w.k);
+          M::constraint_rows(w.k, s.t, w.c);
+          positive = M::factorize(w.c) && positive;
+        }
+        M::correct_positions(w.c, s);
+      }
+      correct_velocities<M>(w.c, s);
+    }
+  }
+
+  if (!finite(s)) {
+    s = w.last_good;
+    return StepStatus::non_finite;
+  }
+  if (!positive) {
+    s = w.last_good;
+    return StepStatus::not_positive;
+  }
+  return StepStatus::ok;
+}
+
+}  // namespace mbrt::schemes
