@@ -347,7 +347,7 @@ void Emitter::loads_stage(std::ostringstream& o) const {
     o << ",\n// " << (gyroscopic_torques ? "gyroscopic torques " : "") << (has_inputs() ? "inputs " : "") << "included";
   }
   o << ", and the elastic energy stored.\n"
-    << "static void applied_loads(const Kinematics& k, const State& s, Loads& l) noexcept {\n"
+    << "static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, Loads& l) noexcept {\n"
     << (has_inputs() ? "  const Inputs& u = s.inputs;\n" : "  (void)s;\n")
     << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {

@@ -1,8 +1,12 @@
-// The C++ emitter's shared state and the pieces every scheme uses. The
-// definitions are split by concept: emit_cpp.cpp (model data, kinematics,
-// loads, constraint system, diagnostics), emit_staggered.cpp (staggered-pcst,
-// baumgarte, blajer), emit_nps.cpp (staggered-nps), emit_ali3p.cpp (ali3p),
-// emit_planar.cpp (staggered-pcst's step in planar coordinates).
+// The C++ emitter: it writes a model's constants, types and kernels as the
+// Analysis plans them; the schemes' steps are templates in
+// include/mbrt/schemes/ over the emitted struct Model (docs/architecture.md).
+// The definitions are split by concept: emit_cpp.cpp (model data, kinematics,
+// loads, constraint system, diagnostics, the header and Workspace),
+// emit_staggered.cpp (kernels of staggered-pcst, baumgarte, blajer),
+// emit_newton.cpp (the position stage's matrix), emit_nps.cpp
+// (staggered-nps), emit_ali3p.cpp (ali3p), emit_planar.cpp (the kernels in
+// planar coordinates).
 #pragma once
 
 #include <algorithm>

@@ -17,6 +17,7 @@
 // Workspace holds last_good (the state at t), k, c and l.
 #pragma once
 
+#include "mbrt/scheme.hpp"
 #include "mbrt/schemes/state_checks.hpp"
 #include "mbrt/step_status.hpp"
 
