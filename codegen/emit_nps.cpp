@@ -36,8 +36,14 @@ std::vector<std::string> Emitter::null_space_columns(const TreeBody& tb) const {
       return {turn(a), turn(tb.child_is_body2 ? f + "a2" : "mbrt::Vec3(to_child * " + f + "a2)")};
     case JointType::planar: return {turn(a), slide(body1("b")), slide(body1("c"))};
     case JointType::screw: return {turn(a) + " + " + f + "pitch * " + slide(a)};
-    default: return {};  // fixed
+    case JointType::fixed: return {};
+    case JointType::distance:
+    case JointType::rolling_disk:
+    case JointType::rolling_ball:
+    case JointType::knife_edge:
+    case JointType::velocity_toward: break;  // never tree joints (tree_plan.cpp)
   }
+  return {};
 }
 
 // Whether the columns need to_child = R_child^T R_parent.
