@@ -42,7 +42,7 @@ struct ConstraintBlock {
   mbrt::JointFrame frame;
   const TimeFunction* function = nullptr;  // drivers only (points into the Model)
   int holonomic_rows = 0;  // the first rows; the rest act on velocities only (rolling_disk, knife_edge)
-  std::vector<int> spatial_rows;  // planar blocks: the rows of the spatial block they are, in order
+  std::vector<int> spatial_rows = {};  // planar blocks: the rows of the spatial block they are, in order
 };
 
 struct ForcePlan {

@@ -281,7 +281,6 @@ void Emitter::loads_stage(std::ostringstream& o) const {
     << "void applied_loads(const Kinematics& k, " << (has_inputs() ? "const Inputs& u, " : "") << "Loads& l) noexcept {\n"
     << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    const BodyPlan& p = a_.bodies[i];
     if (folded_weights()) o << "  l.w[" << i << "].f += " << weight_of(static_cast<int>(i)) << ";\n";
     else if (a_.gravity) o << "  l.w[" << i << "].f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
     if (gyroscopic(static_cast<int>(i)) && gyroscopic_loads()) {
