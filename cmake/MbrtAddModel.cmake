@@ -1,6 +1,6 @@
 # mbrt_add_model(<target> MODEL <model.yaml>
 #                [NAME <name>] [SCHEME <scheme>] [STEP <h>] [EULER_UPDATES <k>] [PROJECT_INITIAL] [LCM]
-#                [GEN_OPTIONS <mbrt gen options>...])
+#                [WARNINGS] [GEN_OPTIONS <mbrt gen options>...])
 #
 # Generates the model's step with `mbrt gen` at build time (again whenever the
 # model file or the generator changes) and adds it as a static library
@@ -11,9 +11,12 @@
 # Outputs and Inputs into them ("<name>_can.hpp" packs them into CAN frames as
 # "<name>.dbc" describes); the target then links liblcm. GEN_OPTIONS
 # passes further `mbrt gen` options (e.g. --ali3p-projection cuadrado,
-# --no-specialize, or --can-fd for the CAN layout in CAN FD frames).
+# --no-specialize, or --can-fd for the CAN layout in CAN FD frames). WARNINGS
+# compiles the generated code with mbrt_enable_warnings(), as warnings only.
+include(${CMAKE_CURRENT_LIST_DIR}/MbrtWarnings.cmake)
+
 function(mbrt_add_model target)
-  cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
+  cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM;WARNINGS" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "mbrt_add_model(${target}): MODEL <file.yaml> is required")
   endif()
@@ -75,4 +78,9 @@ function(mbrt_add_model target)
     target_compile_options(${target} PUBLIC -fno-strict-aliasing)
   endif()
   target_compile_features(${target} PUBLIC cxx_std_17)
+  if(MBRT_GENERATED_WARNINGS_ARE_ERRORS)
+    mbrt_enable_warnings(${target})
+  elseif(ARG_WARNINGS)
+    mbrt_enable_warnings(${target} NO_ERROR)
+  endif()
 endfunction()

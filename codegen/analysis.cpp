@@ -14,44 +14,6 @@
 
 namespace mbrt::codegen {
 
-int constraint_rows(JointType type) {
-  switch (type) {
-    case JointType::spherical: return 3;
-    case JointType::revolute: return 5;
-    case JointType::universal: return 4;
-    case JointType::cylindrical: return 4;
-    case JointType::prismatic: return 5;
-    case JointType::fixed: return 6;
-    case JointType::distance: return 1;
-    case JointType::screw: return 5;
-    case JointType::planar: return 3;
-    case JointType::rolling_disk: return 3;
-    case JointType::knife_edge: return 1;
-    case JointType::rolling_ball: return 3;
-    case JointType::velocity_toward: return 1;
-  }
-  return 0;
-}
-
-const char* joint_type_name(JointType type) {
-  switch (type) {
-    case JointType::spherical: return "spherical";
-    case JointType::revolute: return "revolute";
-    case JointType::universal: return "universal";
-    case JointType::cylindrical: return "cylindrical";
-    case JointType::prismatic: return "prismatic";
-    case JointType::fixed: return "fixed";
-    case JointType::distance: return "distance";
-    case JointType::screw: return "screw";
-    case JointType::planar: return "planar";
-    case JointType::rolling_disk: return "rolling_disk";
-    case JointType::knife_edge: return "knife_edge";
-    case JointType::rolling_ball: return "rolling_ball";
-    case JointType::velocity_toward: return "velocity_toward";
-  }
-  return "?";
-}
-
 mbrt::TimeValue evaluate(const TimeFunction& f, double t) {
   if (f.is_sine) return mbrt::sine({f.amplitude, f.omega, f.phase, f.offset}, t);
   return mbrt::polynomial(f.polynomial.data(), f.polynomial.size(), t);
@@ -96,12 +58,10 @@ void complete_triad(const Eigen::Vector3d& a, Eigen::Vector3d& b, Eigen::Vector3
 }
 
 mbrt::JointFrame joint_frame(const Model& model, const Joint& j, const std::string& key) {
-  const bool needs_orientation =
-      j.type != JointType::spherical && j.type != JointType::distance && j.type != JointType::velocity_toward;
   for (int body : {j.body1, j.body2}) {
-    if (needs_orientation && is_particle(model, body)) {
+    if (type_row(j.type).rigid_bodies && is_particle(model, body)) {
       throw ModelError(j.where, key,
-                       std::string("a ") + joint_type_name(j.type) + " joint needs rigid bodies; '" +
+                       std::string("a ") + type_row(j.type).name + " joint needs rigid bodies; '" +
                            model.body_name(body) + "' is a particle (use spherical or distance)");
     }
   }
@@ -114,7 +74,7 @@ mbrt::JointFrame joint_frame(const Model& model, const Joint& j, const std::stri
     f.c1 = j.plane_normal;  // a world direction, whatever body 1 does
     return f;
   }
-  if (is_ground_contact(j.type)) {
+  if (type_row(j.type).ground_contact) {
     // Body 1 is the ground: its "body axes" are world axes.
     f.c1 = j.plane_normal;
     complete_triad(f.c1, f.a1, f.b1);
@@ -146,15 +106,6 @@ mbrt::JointFrame joint_frame(const Model& model, const Joint& j, const std::stri
   f.length = 0.0;
   f.pitch = j.lead / (2.0 * M_PI);
   return f;
-}
-
-const char* driver_kernel(DriverType type) {
-  switch (type) {
-    case DriverType::joint_angle: return "joint_angle_driver";
-    case DriverType::joint_distance: return "joint_distance_driver";
-    case DriverType::distance: return "distance_driver";
-  }
-  return "?";
 }
 
 // Blocks coupled through a shared moving body (ground couples nothing).
@@ -330,24 +281,38 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   for (size_t i = 0; i < model.joints.size(); ++i) {
     const Joint& j = model.joints[i];
     const std::string key = "joints[" + std::to_string(i) + "]";
-    a.constraints.push_back({j.name, j.where, joint_type_name(j.type), j.body1, j.body2, constraint_rows(j.type),
-                             a.constraint_rows, joint_frame(model, j, key), nullptr});
-    ConstraintBlock& block = a.constraints.back();
-    switch (j.type) {
-      case JointType::knife_edge:
-      case JointType::velocity_toward: block.holonomic_rows = 0; break;
-      case JointType::rolling_disk:
-      case JointType::rolling_ball: block.holonomic_rows = 1; break;
-      default: block.holonomic_rows = block.rows;
-    }
+    const JointTypeRow& type = type_row(j.type);
+    ConstraintBlock block{.name = j.name,
+                          .where = j.where,
+                          .source = ConstraintSource::joint,
+                          .joint_type = j.type,
+                          .kernel = type.kernel,
+                          .body1 = j.body1,
+                          .body2 = j.body2,
+                          .rows = type.rows,
+                          .first_row = a.constraint_rows,
+                          .frame = joint_frame(model, j, key),
+                          .holonomic_rows = type.holonomic_rows};
     a.nonholonomic = a.nonholonomic || block.holonomic_rows < block.rows;
-    a.constraint_rows += a.constraints.back().rows;
+    a.constraint_rows += block.rows;
+    a.constraints.push_back(block);
   }
   for (size_t i = 0; i < model.drivers.size(); ++i) {
     const Driver& d = model.drivers[i];
     const std::string key = "drivers[" + std::to_string(i) + "]";
-    ConstraintBlock block{d.name, d.where, driver_kernel(d.type), d.body1, d.body2, 1, a.constraint_rows, {}, &d.function,
-                          1};
+    const DriverTypeRow& type = type_row(d.type);
+    ConstraintBlock block{.name = d.name,
+                          .where = d.where,
+                          .source = ConstraintSource::driver,
+                          .driver_type = d.type,
+                          .kernel = type.kernel,
+                          .body1 = d.body1,
+                          .body2 = d.body2,
+                          .rows = type.rows,
+                          .first_row = a.constraint_rows,
+                          .frame = {},
+                          .function = &d.function,
+                          .holonomic_rows = type.rows};
     if (d.type == DriverType::distance) {
       block.frame.s1 = body_point(model, d.body1, d.point1, d.where, key + ".point1");
       block.frame.s2 = body_point(model, d.body2, d.point2, d.where, key + ".point2");
@@ -358,8 +323,8 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
       block.body2 = model.joints[joint].body2;
       block.frame = a.constraints[joint].frame;
     }
+    a.constraint_rows += block.rows;
     a.constraints.push_back(block);
-    a.constraint_rows += 1;
   }
   a.rheonomic = !model.drivers.empty() || !specialize.no_drivers;
   for (size_t i = 0; i < model.forces.size(); ++i) {

@@ -25,11 +25,16 @@ struct BodyPlan {
   bool loaded;          // some applied load acts on it (gravity, gyroscopic torque, force, input)
 };
 
+enum class ConstraintSource { joint, driver };
+
 // One block of constraint rows: a joint, or a driver (rheonomic).
 struct ConstraintBlock {
   std::string name;
   SourceLocation where;
-  std::string kernel;   // runtime function that evaluates it: "revolute", "joint_angle_driver", ...
+  ConstraintSource source;
+  JointType joint_type = JointType::spherical;       // joints
+  DriverType driver_type = DriverType::joint_angle;  // drivers
+  std::string kernel;   // runtime function generated code calls: the type's, or a planar one (planar_scene.cpp)
   int body1;
   int body2;
   int rows;             // constraint rows of this block
@@ -37,7 +42,7 @@ struct ConstraintBlock {
   mbrt::JointFrame frame;
   const TimeFunction* function = nullptr;  // drivers only (points into the Model)
   int holonomic_rows = 0;  // the first rows; the rest act on velocities only (rolling_disk, knife_edge)
-  std::vector<int> spatial_rows;  // planar blocks: the rows of the spatial block they are, in order
+  std::vector<int> spatial_rows = {};  // planar blocks: the rows of the spatial block they are, in order
 };
 
 struct ForcePlan {
@@ -132,10 +137,6 @@ struct Analysis {
 // Throws ModelError for models the generator cannot handle (e.g. a revolute
 // joint on a particle).
 Analysis analyse(const Model& model, const Specializations& specialize = {});
-
-// Row count of a joint type.
-int constraint_rows(JointType type);
-const char* joint_type_name(JointType type);
 
 // A time function's value and derivatives at t (generation-time checks).
 mbrt::TimeValue evaluate(const TimeFunction& f, double t);

@@ -1,7 +1,5 @@
 #include "constraint_evaluation.hpp"
 
-#include <stdexcept>
-
 #include <mbrt/body_state.hpp>
 #include <mbrt/nonholonomic.hpp>
 
@@ -21,37 +19,50 @@ Motion motion_of(const Model& model, int index) {
   return {{b.position, mbrt::rotation_matrix(b.orientation)}, {b.velocity, b.angular_velocity}};
 }
 
-template <int N>
+// A kernel's rows in their place; `type` names the table row whose row count
+// must be the kernel's.
+template <auto type, int N>
 void stack(const mbrt::ConstraintRows<N>& rows, const ConstraintBlock& block, StackedConstraints& out) {
+  static_assert(N == type_row(type).rows, "the type's table row gives another row count than its kernel");
   out.phi.segment<N>(block.first_row) = rows.phi;
   out.phi_t.segment<N>(block.first_row) = rows.phi_t;
   if (block.body1 != kGround) out.B.block<N, 6>(block.first_row, 6 * block.body1) += rows.J1;
   if (block.body2 != kGround) out.B.block<N, 6>(block.first_row, 6 * block.body2) += rows.J2;
 }
 
-// The runtime kernel named by the block, as the generated code calls it.
-void evaluate_block(const ConstraintBlock& b, const mbrt::BodyMotion& m1, const mbrt::BodyMotion& m2, double t,
+// The runtime kernels the generated code calls (the table rows' kernel).
+void evaluate_joint(const ConstraintBlock& b, const mbrt::BodyMotion& m1, const mbrt::BodyMotion& m2,
                     StackedConstraints& out) {
-  const std::string& k = b.kernel;
   const mbrt::JointFrame& f = b.frame;
-  if (k == "spherical") return stack(mbrt::spherical(f, m1, m2), b, out);
-  if (k == "revolute") return stack(mbrt::revolute(f, m1, m2), b, out);
-  if (k == "universal") return stack(mbrt::universal(f, m1, m2), b, out);
-  if (k == "cylindrical") return stack(mbrt::cylindrical(f, m1, m2), b, out);
-  if (k == "prismatic") return stack(mbrt::prismatic(f, m1, m2), b, out);
-  if (k == "fixed") return stack(mbrt::fixed(f, m1, m2), b, out);
-  if (k == "distance") return stack(mbrt::distance(f, m1, m2), b, out);
-  if (k == "screw") return stack(mbrt::screw(f, m1, m2), b, out);
-  if (k == "planar") return stack(mbrt::planar(f, m1, m2), b, out);
-  if (k == "rolling_disk") return stack(mbrt::rolling_disk(f, m1, m2), b, out);
-  if (k == "knife_edge") return stack(mbrt::knife_edge(f, m1, m2), b, out);
-  if (k == "rolling_ball") return stack(mbrt::rolling_ball(f, m1, m2), b, out);
-  if (k == "velocity_toward") return stack(mbrt::velocity_toward(f, m1, m2), b, out);
+  switch (b.joint_type) {
+    case JointType::spherical: return stack<JointType::spherical>(mbrt::spherical(f, m1, m2), b, out);
+    case JointType::revolute: return stack<JointType::revolute>(mbrt::revolute(f, m1, m2), b, out);
+    case JointType::universal: return stack<JointType::universal>(mbrt::universal(f, m1, m2), b, out);
+    case JointType::cylindrical: return stack<JointType::cylindrical>(mbrt::cylindrical(f, m1, m2), b, out);
+    case JointType::prismatic: return stack<JointType::prismatic>(mbrt::prismatic(f, m1, m2), b, out);
+    case JointType::fixed: return stack<JointType::fixed>(mbrt::fixed(f, m1, m2), b, out);
+    case JointType::distance: return stack<JointType::distance>(mbrt::distance(f, m1, m2), b, out);
+    case JointType::screw: return stack<JointType::screw>(mbrt::screw(f, m1, m2), b, out);
+    case JointType::planar: return stack<JointType::planar>(mbrt::planar(f, m1, m2), b, out);
+    case JointType::rolling_disk: return stack<JointType::rolling_disk>(mbrt::rolling_disk(f, m1, m2), b, out);
+    case JointType::rolling_ball: return stack<JointType::rolling_ball>(mbrt::rolling_ball(f, m1, m2), b, out);
+    case JointType::knife_edge: return stack<JointType::knife_edge>(mbrt::knife_edge(f, m1, m2), b, out);
+    case JointType::velocity_toward:
+      return stack<JointType::velocity_toward>(mbrt::velocity_toward(f, m1, m2), b, out);
+  }
+}
+
+void evaluate_driver(const ConstraintBlock& b, const mbrt::BodyMotion& m1, const mbrt::BodyMotion& m2, double t,
+                     StackedConstraints& out) {
+  const mbrt::JointFrame& f = b.frame;
   const mbrt::TimeValue target = evaluate(*b.function, t);
-  if (k == "joint_angle_driver") return stack(mbrt::joint_angle_driver(f, m1, m2, target), b, out);
-  if (k == "joint_distance_driver") return stack(mbrt::joint_distance_driver(f, m1, m2, target), b, out);
-  if (k == "distance_driver") return stack(mbrt::distance_driver(f, m1, m2, target), b, out);
-  throw std::logic_error("no kernel named " + k);
+  switch (b.driver_type) {
+    case DriverType::joint_angle:
+      return stack<DriverType::joint_angle>(mbrt::joint_angle_driver(f, m1, m2, target), b, out);
+    case DriverType::joint_distance:
+      return stack<DriverType::joint_distance>(mbrt::joint_distance_driver(f, m1, m2, target), b, out);
+    case DriverType::distance: return stack<DriverType::distance>(mbrt::distance_driver(f, m1, m2, target), b, out);
+  }
 }
 
 }  // namespace
@@ -66,7 +77,12 @@ StackedConstraints evaluate_constraints(const Model& model, const std::vector<Co
   for (const ConstraintBlock& block : blocks) {
     const Motion a = motion_of(model, block.body1);
     const Motion b = motion_of(model, block.body2);
-    evaluate_block(block, {a.pose, a.vel}, {b.pose, b.vel}, t, out);
+    const mbrt::BodyMotion m1{a.pose, a.vel};
+    const mbrt::BodyMotion m2{b.pose, b.vel};
+    switch (block.source) {
+      case ConstraintSource::joint: evaluate_joint(block, m1, m2, out); break;
+      case ConstraintSource::driver: evaluate_driver(block, m1, m2, t, out); break;
+    }
   }
   Eigen::VectorXd u(6 * model.bodies.size());
   for (size_t i = 0; i < model.bodies.size(); ++i) {

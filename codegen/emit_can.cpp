@@ -35,7 +35,7 @@ std::string output_unit(const Model& m, const Output& out, int k) {
 std::vector<ValueName> output_values(const Model& m) {
   std::vector<ValueName> v;
   for (const Output& out : m.outputs) {
-    const int n = output_count(out.type);
+    const int n = type_row(out.type).values;
     for (int k = 0; k < n; ++k) v.push_back({n == 1 ? out.name : out.name + "_" + std::to_string(k), output_unit(m, out, k)});
   }
   return v;

@@ -351,7 +351,6 @@ void Emitter::loads_stage(std::ostringstream& o) const {
     << (has_inputs() ? "  const Inputs& u = s.inputs;\n" : "  (void)s;\n")
     << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    const BodyPlan& p = a_.bodies[i];
     if (folded_weights()) o << "  l.w[" << i << "].f += " << weight_of(static_cast<int>(i)) << ";\n";
     else if (a_.gravity) o << "  l.w[" << i << "].f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
     if (gyroscopic(static_cast<int>(i)) && gyroscopic_loads()) {
@@ -398,9 +397,8 @@ void Emitter::loads_stage(std::ostringstream& o) const {
 
 void Emitter::constraint_stage(std::ostringstream& o) const {
   o << "// (k, t) => (c.rows_*): constraint values, Jacobians and acceleration terms.\n"
-    << "static void constraint_rows(const Kinematics& k, double t, ConstraintSystem& c) noexcept {\n";
+    << "static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {\n";
   if (blocks() == 0) o << "  (void)k;\n  (void)c;\n";
-  if (!a_.rheonomic) o << "  (void)t;\n";
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& b = block(j);
     o << "  c.rows_" << b.name << " = mbrt::" << b.kernel << "(" << b.name << "_frame, " << motion(b.body1) << ", "

@@ -11,7 +11,7 @@ void Emitter::input_declarations(std::ostringstream& o) const {
     << "namespace input {\n";
   for (size_t i = 0; i < m_.inputs.size(); ++i) {
     const Input& in = m_.inputs[i];
-    o << "inline constexpr int " << in.name << " = " << i << ";  // " << input_type_name(in.type) << " "
+    o << "inline constexpr int " << in.name << " = " << i << ";  // " << type_row(in.type).name << " "
       << input_target(in) << ", " << (in.type == InputType::joint_force ? "N" : "N m") << "\n";
   }
   o << "}  // namespace input\n"
@@ -19,7 +19,7 @@ void Emitter::input_declarations(std::ostringstream& o) const {
     << "using Inputs = std::array<double, kInputs>;\n"
     << "inline constexpr std::array<mbrt::InputInfo, kInputs> kInputInfo{{\n";
   for (const Input& in : m_.inputs) {
-    o << "    {\"" << in.name << "\", \"" << input_type_name(in.type) << "\", \"" << input_target(in) << "\", "
+    o << "    {\"" << in.name << "\", \"" << type_row(in.type).name << "\", \"" << input_target(in) << "\", "
       << num(in.min) << ", " << num(in.max) << ", " << num(in.safe) << "},\n";
   }
   o << "}};\n\n";
@@ -30,9 +30,9 @@ void Emitter::output_declarations(std::ostringstream& o) const {
   o << "// Signals outputs() computes, as one array of values; see kOutputInfo.\nnamespace output {\n";
   int first = 0;
   for (const Output& out : m_.outputs) {
-    o << "inline constexpr int " << out.name << " = " << first << ";  // " << output_type_name(out.type) << " of "
+    o << "inline constexpr int " << out.name << " = " << first << ";  // " << type_row(out.type).name << " of "
       << output_source(out) << ", " << output_layout(out) << "\n";
-    first += output_count(out.type);
+    first += type_row(out.type).values;
   }
   o << "}  // namespace output\n"
     << "inline constexpr int kOutputSignals = " << m_.outputs.size() << ";\n"
@@ -41,9 +41,9 @@ void Emitter::output_declarations(std::ostringstream& o) const {
     << "inline constexpr std::array<mbrt::OutputInfo, kOutputSignals> kOutputInfo{{\n";
   first = 0;
   for (const Output& out : m_.outputs) {
-    o << "    {\"" << out.name << "\", \"" << output_type_name(out.type) << "\", \"" << output_source(out) << "\", "
-      << first << ", " << output_count(out.type) << "},\n";
-    first += output_count(out.type);
+    o << "    {\"" << out.name << "\", \"" << type_row(out.type).name << "\", \"" << output_source(out) << "\", "
+      << first << ", " << type_row(out.type).values << "},\n";
+    first += type_row(out.type).values;
   }
   o << "}};\n\n";
 }
@@ -73,7 +73,7 @@ std::string Emitter::output_layout(const Output& out) const {
 // both points lie on the axis line, so the pair has no moment.
 void Emitter::input_load(std::ostringstream& o, const Input& in, const InputPlan& p) const {
   const std::string n = in.name;
-  o << "  {  // input " << n << ": " << input_type_name(in.type) << " " << input_target(in) << " on "
+  o << "  {  // input " << n << ": " << type_row(in.type).name << " " << input_target(in) << " on "
     << m_.body_name(p.body2) << ", reaction on " << m_.body_name(p.body1) << "\n";
   if (in.type == InputType::joint_force) {  // planar: along an axis in the plane (codegen/planar_scene.cpp)
     o << "    const mbrt::" << (planar_ ? "Vec2" : "Vec3") << " f = u[input::" << n << "] * (" << pose(p.body1) << ".R * "

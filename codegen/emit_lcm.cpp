@@ -10,7 +10,7 @@ std::string package_of(const Model& m) { return m.name + "_lcm"; }
 
 std::string signal_comment(const Model& m, const Output& out) {
   const std::string source = out.joint >= 0 ? m.joints[static_cast<size_t>(out.joint)].name : m.body_name(out.body);
-  return std::string(output_type_name(out.type)) + " of " + source;
+  return std::string(type_row(out.type).name) + " of " + source;
 }
 
 std::string lcm_types(const Model& m) {
@@ -25,7 +25,7 @@ std::string lcm_types(const Model& m) {
     << "    int64_t command_seq;  // sequence number of the command in use; -1 on the safe values\n"
     << "    double t;             // simulation time, s\n";
   for (const Output& out : m.outputs) {
-    const int n = output_count(out.type);
+    const int n = type_row(out.type).values;
     o << "    double " << out.name << (n > 1 ? "[" + std::to_string(n) + "]" : "") << ";  // " << signal_comment(m, out)
       << "\n";
   }
@@ -36,7 +36,7 @@ std::string lcm_types(const Model& m) {
     << "    int64_t seq;          // increasing; restarts are accepted after the stale timeout\n"
     << "    int64_t state_utime;  // utime of the state message this command answers; its age counts from there\n";
   for (const Input& in : m.inputs) {
-    o << "    double " << in.name << ";  // " << input_type_name(in.type) << ", range [" << in.min << ", " << in.max
+    o << "    double " << in.name << ";  // " << type_row(in.type).name << ", range [" << in.min << ", " << in.max
       << "], safe " << in.safe << "\n";
   }
   o << "}\n";
@@ -58,7 +58,7 @@ std::string packing(const Model& m) {
     if (outputs) {
       for (const Output& out : m.outputs) {
         const std::string field = "m." + out.name, value = "y[output::" + out.name + "]";
-        const int n = output_count(out.type);
+        const int n = type_row(out.type).values;
         if (n == 1) {
           o << "  " << (to_message ? field + " = " + value : value + " = " + field) << ";\n";
         } else if (to_message) {

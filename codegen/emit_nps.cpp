@@ -36,8 +36,14 @@ std::vector<std::string> Emitter::null_space_columns(const TreeBody& tb) const {
       return {turn(a), turn(tb.child_is_body2 ? f + "a2" : "mbrt::Vec3(to_child * " + f + "a2)")};
     case JointType::planar: return {turn(a), slide(body1("b")), slide(body1("c"))};
     case JointType::screw: return {turn(a) + " + " + f + "pitch * " + slide(a)};
-    default: return {};  // fixed
+    case JointType::fixed: return {};
+    case JointType::distance:
+    case JointType::rolling_disk:
+    case JointType::rolling_ball:
+    case JointType::knife_edge:
+    case JointType::velocity_toward: break;  // never tree joints (tree_plan.cpp)
   }
+  return {};
 }
 
 // Whether the columns need to_child = R_child^T R_parent.
@@ -100,7 +106,7 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
   const TreePlan& tree = a_.tree;
   o << "// (k, c) => (t): the tree elimination, leaves first. IA of a body is its\n"
     << "// mass plus X^T (IA - W W^T) X of each child; false if a pivot is not positive.\n"
-    << "static bool factorize_tree(const Kinematics& k, const ConstraintSystem& c, TreeSystem& t) noexcept {\n"
+    << "static bool factorize_tree([[maybe_unused]] const Kinematics& k, const ConstraintSystem& c, [[maybe_unused]] TreeSystem& t) noexcept {\n"
     << "  bool positive = true;\n";
   if (blocks() == 0) o << "  (void)c;\n";
   for (const TreeBody& tb : tree.order) {
@@ -172,7 +178,7 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
       << "// B u' = target on the tree rows and D^T (M u' - force) = 0. a_p = Q G^-1\n"
       << "// target is a particular solution per joint. Leaves first, then from the\n"
       << "// roots.\n"
-      << "static void tree_solve(const TreeSystem& t, const BodyVectors& force, const Rows& target,\n"
+      << "static void tree_solve([[maybe_unused]] const TreeSystem& t, const BodyVectors& force, const Rows& target,\n"
       << "                TreeSolution& x) noexcept {\n"
       << "  BodyVectors& acc = x.acc;\n  BodyVectors& g = x.g;\n  BodyVectors& part = x.part;\n"
       << "  for (int b = 0; b < kBodies; ++b) {\n    g[b] = -force[b];\n    part[b].setZero();\n  }\n";
@@ -181,7 +187,7 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
     o << "// (t, force) => (acc): u' = D z' with D^T (M u' - force) = 0, the tree's\n"
       << "// response to a force (with a momentum as force: the M-orthogonal\n"
       << "// projection onto the tree's velocity constraints).\n"
-      << "static void tree_response(const TreeSystem& t, const BodyVectors& force, BodyVectors& acc) noexcept {\n"
+      << "static void tree_response([[maybe_unused]] const TreeSystem& t, const BodyVectors& force, BodyVectors& acc) noexcept {\n"
       << "  BodyVectors g;  // -force + what the children pass on\n"
       << "  for (int b = 0; b < kBodies; ++b) g[b] = -force[b];\n";
   }
@@ -241,7 +247,7 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
 void Emitter::nps_tree_multipliers(std::ostringstream& o) const {
   o << "// (t, x) => (tree rows of lambda): each tree joint's force on its child,\n"
     << "// -B^T lambda = IA (u' - a_p) + g.\n"
-    << "static void tree_multipliers(const TreeSystem& t, const TreeSolution& x, Rows& lambda) noexcept {\n";
+    << "static void tree_multipliers([[maybe_unused]] const TreeSystem& t, const TreeSolution& x, Rows& lambda) noexcept {\n";
   bool joints = false;
   for (const TreeBody& tb : a_.tree.order) {
     if (tb.joint < 0) continue;

@@ -61,11 +61,11 @@ void check_initial_state(const Model& model, const Analysis& analysis) {
   const InitialResidual r = initial_residual(model, analysis);
   const auto report = [&](int block, double residual, const char* level, const char* what) {
     const ConstraintBlock& b = analysis.constraints[static_cast<size_t>(block)];
+    const bool driver = b.source == ConstraintSource::driver;
     std::ostringstream m;
-    m << "initial " << level << " violate " << (b.kernel.find("driver") == std::string::npos ? "joint" : "driver")
-      << " '" << b.name << "' by " << residual << " (tolerance " << kInitialTolerance << "); fix the " << what
-      << " or pass --project-initial";
-    throw ModelError(b.where, b.kernel.find("driver") == std::string::npos ? "joints" : "drivers", m.str());
+    m << "initial " << level << " violate " << (driver ? "driver" : "joint") << " '" << b.name << "' by " << residual
+      << " (tolerance " << kInitialTolerance << "); fix the " << what << " or pass --project-initial";
+    throw ModelError(b.where, driver ? "drivers" : "joints", m.str());
   };
   if (r.position > kInitialTolerance) report(r.position_block, r.position, "positions", "positions");
   if (r.velocity > kInitialTolerance) report(r.velocity_block, r.velocity, "velocities", "velocities");

@@ -15,33 +15,6 @@ std::string format_error(const SourceLocation& where, const std::string& key, co
 ModelError::ModelError(const SourceLocation& where, const std::string& key, const std::string& message)
     : std::runtime_error(format_error(where, key, message)), where_(where), key_(key) {}
 
-const char* input_type_name(InputType t) {
-  switch (t) {
-    case InputType::joint_torque: return "joint_torque";
-    case InputType::joint_force: return "joint_force";
-    case InputType::motor_torque: return "motor_torque";
-  }
-  return "?";
-}
-
-const char* output_type_name(OutputType t) {
-  switch (t) {
-    case OutputType::joint_position: return "joint_position";
-    case OutputType::joint_velocity: return "joint_velocity";
-    case OutputType::body_pose: return "body_pose";
-    case OutputType::body_velocity: return "body_velocity";
-  }
-  return "?";
-}
-
-int output_count(OutputType t) {
-  switch (t) {
-    case OutputType::body_pose: return 7;
-    case OutputType::body_velocity: return 6;
-    default: return 1;
-  }
-}
-
 const std::string& Model::body_name(int index) const {
   static const std::string ground = "ground";
   return index == kGround ? ground : bodies.at(static_cast<size_t>(index)).name;

@@ -13,6 +13,12 @@
 
 #include <mbrt/scheme.hpp>
 
+#include "driver_types.hpp"
+#include "force_types.hpp"
+#include "input_types.hpp"
+#include "joint_types.hpp"
+#include "output_types.hpp"
+
 namespace mbrt::codegen {
 
 // Where a value came from, for error messages: "file:line:column".
@@ -49,19 +55,6 @@ struct Body {
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // body axes
 };
 
-// rolling_disk, rolling_ball and knife_edge are contacts of one body with the
-// ground plane (body1 = ground); velocity_toward is Dopico et al.'s two-mass
-// constraint. All have nonholonomic rows, see include/mbrt/nonholonomic.hpp.
-enum class JointType {
-  spherical, revolute, universal, cylindrical, prismatic, fixed, distance, screw, planar,
-  rolling_disk, rolling_ball, knife_edge, velocity_toward
-};
-
-// rolling_disk, rolling_ball, knife_edge: one body on the ground plane.
-inline bool is_ground_contact(JointType t) {
-  return t == JointType::rolling_disk || t == JointType::rolling_ball || t == JointType::knife_edge;
-}
-
 struct Joint {
   std::string name;
   SourceLocation where;
@@ -90,12 +83,6 @@ struct TimeFunction {
   double amplitude = 0.0, omega = 0.0, phase = 0.0, offset = 0.0;
 };
 
-// Rheonomic constraints: joint_angle (revolute, cylindrical: angle about the
-// axis from t = 0, rad), joint_distance (prismatic, cylindrical: slide along
-// the axis from t = 0, m), distance (between point1 of body1 and point2 of
-// body2, m).
-enum class DriverType { joint_angle, joint_distance, distance };
-
 struct Driver {
   std::string name;
   SourceLocation where;
@@ -107,8 +94,6 @@ struct Driver {
   Eigen::Vector3d point2 = Eigen::Vector3d::Zero();
   TimeFunction function;
 };
-
-enum class ForceType { spring_damper, torque, force };
 
 struct Force {
   ForceType type = ForceType::force;
@@ -127,12 +112,6 @@ struct Force {
   Eigen::Vector3d vector = Eigen::Vector3d::Zero();  // force: world, constant
 };
 
-// A command from a controller, applied as a load by the step:
-// joint_torque about a revolute joint's axis on body2 (reaction on body1),
-// joint_force along a prismatic joint's axis on body2 (reaction on body1),
-// motor_torque about an axis fixed in body1 between two bodies.
-enum class InputType { joint_torque, joint_force, motor_torque };
-
 struct Input {
   std::string name;
   SourceLocation where;
@@ -144,14 +123,6 @@ struct Input {
   double min = 0.0, max = 0.0, safe = 0.0;          // accepted range; value when commands are stale
 };
 
-// A signal the model publishes: joint_position and joint_velocity of a
-// revolute (rad, rad/s) or prismatic (m, m/s) joint, measured from t = 0;
-// body_pose (x, y, z, e0..e3) and body_velocity (vx, vy, vz world; wx, wy, wz
-// body axes) of a body.
-enum class OutputType { joint_position, joint_velocity, body_pose, body_velocity };
-
-const char* input_type_name(InputType type);
-
 struct Output {
   std::string name;
   SourceLocation where;
@@ -159,9 +130,6 @@ struct Output {
   int joint = -1;     // joint_position, joint_velocity
   int body = kGround; // body_pose, body_velocity
 };
-
-const char* output_type_name(OutputType type);
-int output_count(OutputType type);  // values per signal: 7 for a pose, 6 for a velocity, else 1
 
 // ali3p (docs/ali3p.md): index-3 augmented Lagrangian with projections.
 struct Ali3pSettings {

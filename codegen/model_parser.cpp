@@ -24,23 +24,12 @@ namespace mbrt::codegen {
 
 namespace {
 
-using Keys = std::vector<std::string>;
-
 const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers", "inputs", "outputs", "solver"};
 const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
                         "orientation", "velocity", "angular_velocity"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
-// Keys of every joint / force type; each type then takes a subset.
-const Keys kJointKeys = {"name",   "type",   "body1",  "body2", "point",     "axis",        "axis1",
-                         "axis2",  "point1", "point2", "length", "lead", "body", "radius", "direction",
-                         "plane_point", "plane_normal", "center"};
-const Keys kDriverKeys = {"name", "type", "joint", "body1", "body2", "point1", "point2", "function"};
 const Keys kFunctionKeys = {"polynomial", "sine"};
 const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
-const Keys kForceKeys = {"type", "body1", "body2", "point1", "point2", "stiffness", "damping",
-                         "rest_length", "axis", "value", "body", "point", "vector"};
-const Keys kInputKeys = {"name", "type", "joint", "body1", "body2", "axis", "min", "max", "safe"};
-const Keys kOutputKeys = {"name", "type", "joint", "body"};
 // Fields every generated LCM message has besides the signals.
 const Keys kMessageFields = {"utime", "seq", "state_utime", "command_seq", "t"};
 const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
@@ -49,31 +38,6 @@ const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "pe
 const Keys kAli3pKeys = {"alpha",      "relative_shift",        "alpha_of",   "newton_iterations",
                          "projection", "projection_iterations", "integrator", "rho_inf"};
 
-const std::vector<std::pair<std::string, JointType>> kJointTypes = {
-    {"spherical", JointType::spherical},     {"revolute", JointType::revolute},
-    {"universal", JointType::universal},     {"cylindrical", JointType::cylindrical},
-    {"prismatic", JointType::prismatic},     {"fixed", JointType::fixed},
-    {"distance", JointType::distance},       {"screw", JointType::screw},
-    {"planar", JointType::planar},           {"rolling_disk", JointType::rolling_disk},
-    {"rolling_ball", JointType::rolling_ball}, {"knife_edge", JointType::knife_edge},
-    {"velocity_toward", JointType::velocity_toward}};
-const std::vector<std::pair<std::string, DriverType>> kDriverTypes = {
-    {"joint_angle", DriverType::joint_angle},
-    {"joint_distance", DriverType::joint_distance},
-    {"distance", DriverType::distance}};
-const std::vector<std::pair<std::string, ForceType>> kForceTypes = {
-    {"spring_damper", ForceType::spring_damper},
-    {"torque", ForceType::torque},
-    {"force", ForceType::force}};
-const std::vector<std::pair<std::string, InputType>> kInputTypes = {
-    {"joint_torque", InputType::joint_torque},
-    {"joint_force", InputType::joint_force},
-    {"motor_torque", InputType::motor_torque}};
-const std::vector<std::pair<std::string, OutputType>> kOutputTypes = {
-    {"joint_position", OutputType::joint_position},
-    {"joint_velocity", OutputType::joint_velocity},
-    {"body_pose", OutputType::body_pose},
-    {"body_velocity", OutputType::body_velocity}};
 const Keys kSchemes(mbrt::kSchemeNames.begin(), mbrt::kSchemeNames.end());
 
 // Axes shorter than this cannot be normalized meaningfully.
@@ -130,9 +94,11 @@ std::string describe(const YAML::Node& node) {
       return "a list of " + std::to_string(node.size()) + (node.size() == 1 ? " item" : " items");
     case YAML::NodeType::Map:
       return "a map";
-    default:
-      return "an empty value";
+    case YAML::NodeType::Null:
+    case YAML::NodeType::Undefined:
+      break;
   }
+  return "an empty value";
 }
 
 // A value in the file with its key path and where it is.
@@ -317,14 +283,10 @@ std::string read_choice(const Value& v, const Keys& choices) {
   return v.node.Scalar();
 }
 
-// A type name mapped to its enum value.
-template <typename Enum>
-Enum read_type(const Value& v, const std::vector<std::pair<std::string, Enum>>& types) {
-  Keys names;
-  for (const auto& t : types) names.push_back(t.first);
-  const std::string s = read_choice(v, names);
-  return std::find_if(types.begin(), types.end(), [&](const auto& t) { return t.first == s; })
-      ->second;
+// A type named by its table row (joint_types.hpp, ...).
+template <typename Row, std::size_t N>
+auto read_type(const Value& v, const std::array<Row, N>& table) {
+  return *type_named(table, read_choice(v, type_names(table)));
 }
 
 // Names must be unique within their kind; `seen` maps each name to the line
@@ -459,27 +421,6 @@ Body parse_body(const Value& item, std::map<std::string, int>& names_seen) {
   return b;
 }
 
-// The keys a joint of this type takes.
-Keys joint_keys(JointType type) {
-  Keys keys = {"name", "type", "body1", "body2"};
-  switch (type) {
-    case JointType::rolling_disk: return {"name", "type", "body", "radius", "axis", "plane_point", "plane_normal"};
-    case JointType::knife_edge: return {"name", "type", "body", "point", "direction", "plane_normal"};
-    case JointType::rolling_ball: return {"name", "type", "body", "radius", "center", "plane_point", "plane_normal"};
-    case JointType::velocity_toward: return {"name", "type", "body1", "body2", "point1", "point2", "plane_normal"};
-    case JointType::revolute:
-    case JointType::cylindrical:
-    case JointType::prismatic:
-    case JointType::planar: keys.insert(keys.end(), {"point", "axis"}); break;
-    case JointType::screw: keys.insert(keys.end(), {"point", "axis", "lead"}); break;
-    case JointType::universal: keys.insert(keys.end(), {"point", "axis1", "axis2"}); break;
-    case JointType::distance: keys.insert(keys.end(), {"point1", "point2", "length"}); break;
-    case JointType::spherical:
-    case JointType::fixed: keys.push_back("point"); break;
-  }
-  return keys;
-}
-
 // A rolling_disk, rolling_ball or knife_edge: a body on the ground plane.
 Joint parse_contact(const Section& s, const Model& model, Joint& j) {
   j.body1 = kGround;
@@ -509,14 +450,14 @@ Joint parse_contact(const Section& s, const Model& model, Joint& j) {
 }
 
 Joint parse_joint(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
-  const Section s(item, kJointKeys);
+  const Section s(item, every_joint_key());
   Joint j;
   j.where = item.where;
   const Value type = s.get("type");
-  j.type = read_type(type, kJointTypes);
+  j.type = read_type(type, kJointTypeTable);
   s.restrict_to(joint_keys(j.type), "a " + type.node.Scalar() + " joint");
   // A ground contact may go unnamed: it is then "<body>_<type>".
-  const bool contact = is_ground_contact(j.type);
+  const bool contact = type_row(j.type).ground_contact;
   const std::optional<Value> given = s.find("name");
   const Value name = given ? *given : contact ? s.get("body") : s.get("name");
   j.name = given ? read_identifier(name) : read_identifier(name) + "_" + type.node.Scalar();
@@ -591,23 +532,12 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   return j;
 }
 
-// The keys a force of this type takes.
-Keys force_keys(ForceType type) {
-  switch (type) {
-    case ForceType::spring_damper:
-      return {"type", "body1", "body2", "point1", "point2", "stiffness", "damping", "rest_length"};
-    case ForceType::torque: return {"type", "body1", "body2", "axis", "value"};
-    case ForceType::force: break;
-  }
-  return {"type", "body", "point", "vector"};
-}
-
 Force parse_force(const Value& item, const Model& model) {
-  const Section s(item, kForceKeys);
+  const Section s(item, every_force_key());
   Force f;
   f.where = item.where;
   const Value type = s.get("type");
-  f.type = read_type(type, kForceTypes);
+  f.type = read_type(type, kForceTypeTable);
   const std::string& type_name = type.node.Scalar();
   s.restrict_to(force_keys(f.type), "a " + type_name + " force");
 
@@ -651,10 +581,7 @@ int read_joint_ref(const Value& v, const Model& model, const std::vector<JointTy
     if (j.name != joint_name) continue;
     if (std::find(types.begin(), types.end(), j.type) == types.end()) {
       std::string names;
-      for (JointType t : types) {
-        const auto named = std::find_if(kJointTypes.begin(), kJointTypes.end(), [&](const auto& e) { return e.second == t; });
-        names += (names.empty() ? "" : " or ") + named->first;
-      }
+      for (JointType t : types) names += (names.empty() ? "" : " or ") + std::string(type_row(t).name);
       fail(v, role + " needs a " + names + " joint; '" + joint_name + "' is not one");
     }
     return static_cast<int>(i);
@@ -683,7 +610,7 @@ TimeFunction parse_function(const Value& v) {
 }
 
 Driver parse_driver(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
-  const Section s(item, kDriverKeys);
+  const Section s(item, every_driver_key());
   Driver d;
   d.where = item.where;
   const Value name = s.get("name");
@@ -693,9 +620,9 @@ Driver parse_driver(const Value& item, const Model& model, std::map<std::string,
   }
   check_unique(name, d.name, "driver", names_seen);
   const Value type = s.get("type");
-  d.type = read_type(type, kDriverTypes);
+  d.type = read_type(type, kDriverTypeTable);
+  s.restrict_to(driver_keys(d.type), "a " + type.node.Scalar() + " driver");
   if (d.type == DriverType::distance) {
-    s.restrict_to({"name", "type", "body1", "body2", "point1", "point2", "function"}, "a distance driver");
     d.body1 = read_body_ref(s.get("body1"), model);
     const Value body2 = s.get("body2");
     d.body2 = read_body_ref(body2, model);
@@ -705,7 +632,6 @@ Driver parse_driver(const Value& item, const Model& model, std::map<std::string,
     d.point2 = read_vector3(point2);
     if (!((d.point2 - d.point1).norm() > 0.0)) fail(point2, "point1 and point2 coincide: the distance has no direction");
   } else {
-    s.restrict_to({"name", "type", "joint", "function"}, "a " + type.node.Scalar() + " driver");
     const std::vector<JointType> joints = d.type == DriverType::joint_angle
                                               ? std::vector{JointType::revolute, JointType::cylindrical}
                                               : std::vector{JointType::prismatic, JointType::cylindrical};
@@ -753,9 +679,9 @@ void check_signal_name(const Value& name_value, const std::string& name, std::ma
 }
 
 // The name and type every input and output starts with; returns the type as written.
-template <typename Enum>
-std::string read_signal_head(const Section& s, const std::vector<std::pair<std::string, Enum>>& types,
-                             std::map<std::string, int>& names_seen, std::string& name, Enum& type) {
+template <typename Row, std::size_t N, typename Enum>
+std::string read_signal_head(const Section& s, const std::array<Row, N>& types, std::map<std::string, int>& names_seen,
+                             std::string& name, Enum& type) {
   const Value name_value = s.get("name");
   name = read_identifier(name_value);
   check_signal_name(name_value, name, names_seen);
@@ -765,19 +691,18 @@ std::string read_signal_head(const Section& s, const std::vector<std::pair<std::
 }
 
 Input parse_input(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
-  const Section s(item, kInputKeys);
+  const Section s(item, every_input_key());
   Input in;
   in.where = item.where;
-  const std::string type_name = read_signal_head(s, kInputTypes, names_seen, in.name, in.type);
+  const std::string type_name = read_signal_head(s, kInputTypeTable, names_seen, in.name, in.type);
+  s.restrict_to(input_keys(in.type), "a " + type_name + " input");
   if (in.type == InputType::motor_torque) {
-    s.restrict_to({"name", "type", "body1", "body2", "axis", "min", "max", "safe"}, "a motor_torque input");
     in.body1 = read_body_ref(s.get("body1"), model);
     const Value body2 = s.get("body2");
     in.body2 = read_body_ref(body2, model);
     if (in.body1 == in.body2) fail(body2, "a motor_torque must connect two different bodies");
     in.axis = read_axis(s.get("axis"));
   } else {
-    s.restrict_to({"name", "type", "joint", "min", "max", "safe"}, "a " + type_name + " input");
     const std::vector<JointType> joints = in.type == InputType::joint_torque
                                               ? std::vector{JointType::revolute, JointType::cylindrical}
                                               : std::vector{JointType::prismatic, JointType::cylindrical};
@@ -796,15 +721,14 @@ Input parse_input(const Value& item, const Model& model, std::map<std::string, i
 }
 
 Output parse_output(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
-  const Section s(item, kOutputKeys);
+  const Section s(item, every_output_key());
   Output out;
   out.where = item.where;
-  const std::string type_name = read_signal_head(s, kOutputTypes, names_seen, out.name, out.type);
+  const std::string type_name = read_signal_head(s, kOutputTypeTable, names_seen, out.name, out.type);
+  s.restrict_to(output_keys(out.type), "a " + type_name + " output");
   if (out.type == OutputType::joint_position || out.type == OutputType::joint_velocity) {
-    s.restrict_to({"name", "type", "joint"}, "a " + type_name + " output");
     out.joint = read_joint_ref(s.get("joint"), model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");
   } else {
-    s.restrict_to({"name", "type", "body"}, "a " + type_name + " output");
     const Value body = s.get("body");
     out.body = read_body_ref(body, model);
     if (out.body == kGround) fail(body, "ground does not move; name a body");

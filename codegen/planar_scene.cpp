@@ -79,8 +79,17 @@ std::string planar_joint(const Plane& plane, const Joint& j, ConstraintBlock& bl
       block.spatial_rows = {0};
       return "";
     case JointType::prismatic: return planar_prismatic(plane, j, block);
-    default: return "joint " + j.name + " is a " + joint_type_name(j.type) + " joint";
+    case JointType::universal:
+    case JointType::cylindrical:
+    case JointType::fixed:
+    case JointType::screw:
+    case JointType::planar:
+    case JointType::rolling_disk:
+    case JointType::rolling_ball:
+    case JointType::knife_edge:
+    case JointType::velocity_toward: break;
   }
+  return "joint " + j.name + " is a " + type_row(j.type).name + " joint";
 }
 
 // Planar kernel of a driver, or a refusal. A joint_angle or joint_distance
@@ -91,7 +100,7 @@ std::string planar_driver(const Plane& plane, const Driver& d, ConstraintBlock& 
   if (d.type == DriverType::distance && !plane.contains(d.point2 - d.point1)) {
     return "the points of distance driver " + d.name + " are not in one " + plane.name() + " plane";
   }
-  block.kernel = "planar_" + block.kernel;
+  block.kernel = std::string("planar_") + type_row(d.type).kernel;
   block.spatial_rows = {0};
   return "";
 }

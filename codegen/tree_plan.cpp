@@ -16,11 +16,16 @@ bool is_tree_joint(JointType type) {
     case JointType::fixed:
     case JointType::screw:
     case JointType::planar: return true;
-    default: return false;
+    case JointType::distance:
+    case JointType::rolling_disk:
+    case JointType::rolling_ball:
+    case JointType::knife_edge:
+    case JointType::velocity_toward: return false;
   }
+  return false;
 }
 
-int tree_joint_dofs(JointType type) { return 6 - constraint_rows(type); }
+int tree_joint_dofs(JointType type) { return 6 - type_row(type).rows; }
 
 bool has_coincidence_rows(JointType type) {
   return type == JointType::spherical || type == JointType::revolute || type == JointType::universal ||

@@ -55,7 +55,7 @@ struct Faults {
 };
 
 struct Options {
-  LinkOptions link{"", 500.0, 5.0, "", model::kStateChannel, model::kCommandChannel};
+  LinkOptions link{"", 500.0, 5.0, "", model::kStateChannel, model::kCommandChannel, "", ""};
   std::vector<double> kp{40.0}, kd{4.0};
   double amplitude = 0.5, frequency = 0.5;
   double settle_s = 1.0;

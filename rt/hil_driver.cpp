@@ -49,7 +49,7 @@ constexpr int kMaxFramesPerCycle = 2 * kMaxCommandsPerCycle * (model::can::kComm
 constexpr std::size_t kPublishedStates = 1024;
 
 struct Options {
-  LinkOptions link{"", 1000.0, 5.0, "", model::kStateChannel, model::kCommandChannel};
+  LinkOptions link{"", 1000.0, 5.0, "", model::kStateChannel, model::kCommandChannel, "", ""};
   double command_timeout_s = 0.05;
   double max_command_age_s = 0.05;
   long publish_every = 1;

@@ -44,6 +44,13 @@ class Random {
 
 double max_abs(const Vec3& x) { return x.cwiseAbs().maxCoeff(); }
 
+// A body of mass m whose principal moments J lie along the columns of Q (principal to body axes).
+mbrt::FullInertia full_inertia(double m, const Vec3& J, const Mat3& Q) {
+  const Mat3 J_body = Q * J.asDiagonal() * Q.transpose();
+  const Quat axes(Q);
+  return {m, J_body, J_body.inverse(), J, mbrt::EulerParameters(axes.w(), axes.x(), axes.y(), axes.z())};
+}
+
 struct Body {
   BodyPose pose;
   BodyVelocity vel;
@@ -198,8 +205,7 @@ TEST_CASE("gyroscopic_torque: Euler's equations for principal axes, equals FullI
     const Vec3 J(rnd.uniform(0.1, 3), rnd.uniform(0.1, 3), rnd.uniform(0.1, 3));
     const Vec3 w = rnd.vec3(5.0);
     const mbrt::PrincipalInertia principal{2.0, J};
-    const Mat3 Jm = J.asDiagonal();
-    const mbrt::FullInertia full{2.0, Jm, Jm.inverse()};
+    const mbrt::FullInertia full = full_inertia(2.0, J, Mat3::Identity());
     const Vec3 t = mbrt::gyroscopic_torque(principal, w);
     // -w x (J w) for diagonal J, component-wise.
     const Vec3 euler((J[1] - J[2]) * w[1] * w[2], (J[2] - J[0]) * w[2] * w[0], (J[0] - J[1]) * w[0] * w[1]);
@@ -209,8 +215,7 @@ TEST_CASE("gyroscopic_torque: Euler's equations for principal axes, equals FullI
 
     // A rotated inertia tensor: the torque transforms as a vector.
     const Mat3 Q = rnd.rotation();
-    const Mat3 Jr = Q * Jm * Q.transpose();
-    const mbrt::FullInertia rotated{2.0, Jr, Jr.inverse()};
+    const mbrt::FullInertia rotated = full_inertia(2.0, J, Q);
     CHECK(max_abs(mbrt::gyroscopic_torque(rotated, Q * w) - Q * t) < 1e-12 * std::max(1.0, t.norm()));
     // Spinning about a principal axis produces no torque.
     CHECK(max_abs(mbrt::gyroscopic_torque(principal, Vec3(0, w[1], 0))) == 0.0);
@@ -225,8 +230,8 @@ TEST_CASE("inertia_times and inverse_inertia_times are inverse, for principal an
   CHECK(max_abs(mbrt::inertia_times(principal, w) - Vec3(w[0], 2 * w[1], 3 * w[2])) < 1e-15);
   CHECK(max_abs(mbrt::inverse_inertia_times(principal, mbrt::inertia_times(principal, w)) - w) < 1e-15);
   const Mat3 Q = rnd.rotation();
-  const Mat3 Jr = Q * J.asDiagonal() * Q.transpose();
-  const mbrt::FullInertia full{1.0, Jr, Jr.inverse()};
+  const mbrt::FullInertia full = full_inertia(1.0, J, Q);
+  const Mat3& Jr = full.J;
   CHECK(max_abs(mbrt::inertia_times(full, w) - Jr * w) < 1e-15);
   CHECK(max_abs(mbrt::inverse_inertia_times(full, mbrt::inertia_times(full, w)) - w) < 1e-14);
 }

@@ -3,12 +3,15 @@
 // what was expected.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
+#include "analysis.hpp"
 #include "model.hpp"
 
 using namespace mbrt::codegen;
@@ -1013,4 +1016,137 @@ joints:
      plane_normal: [0, 0, 1]}
 )",
                     "joints[0].direction", 5, "the edge direction must lie in the plane");
+}
+
+// ---- element type tables ----------------------------------------------------
+
+namespace {
+
+// A model with bodies a and b, a cylindrical joint "slide" (ground - a) and a
+// revolute joint "pin" (ground - b), plus `section` (e.g. "forces:\n  - {...}").
+std::string scene_with(const std::string& section) {
+  return "name: tables\nbodies:\n"
+         "  - {name: a, mass: 1, inertia: [1, 1, 1]}\n"
+         "  - {name: b, mass: 1, inertia: [1, 1, 1], position: [0, 0, 0.5]}\n"
+         "joints:\n"
+         "  - {name: slide, type: cylindrical, body1: ground, body2: a, point: [0, 0, 0], axis: [1, 0, 0]}\n"
+         "  - {name: pin, type: revolute, body1: ground, body2: b, point: [0, 0, 0.5], axis: [0, 0, 1]}\n" +
+         section;
+}
+
+// A list item giving exactly `keys`, each with a value every element type that
+// takes it accepts; a key without one here fails the test.
+std::string item_with(const Keys& keys, const std::string& type_name) {
+  static const std::map<std::string, std::string> kValues = {
+      {"name", "item"},          {"body1", "ground"},      {"body2", "b"},            {"body", "b"},
+      {"joint", "slide"},        {"point", "[0, 0, 0.5]"}, {"axis", "[0, 0, 1]"},     {"axis1", "[1, 0, 0]"},
+      {"axis2", "[0, 1, 0]"},    {"point1", "[0, 0, 0]"},  {"point2", "[0, 0, 0.5]"}, {"length", "0.5"},
+      {"lead", "0.1"},           {"radius", "0.5"},        {"center", "[0, 0, 0.5]"}, {"direction", "[1, 0, 0]"},
+      {"plane_point", "[0, 0, 0]"}, {"plane_normal", "[0, 0, 1]"}, {"stiffness", "10"}, {"damping", "1"},
+      {"rest_length", "0.5"},    {"value", "1"},           {"vector", "[1, 0, 0]"},   {"function", "{polynomial: [0]}"},
+      {"min", "-1"},             {"max", "1"},             {"safe", "0"}};
+  std::map<std::string, std::string> values = kValues;
+  values["type"] = type_name;
+  std::string item;
+  for (const std::string& key : keys) {
+    INFO("key: ", key);
+    const auto value = values.find(key);
+    REQUIRE(value != values.end());
+    item += (item.empty() ? "" : ", ") + key + ": " + value->second;
+  }
+  return "  - {" + item + "}\n";
+}
+
+bool takes_all(const Keys& every, const Keys& keys) {
+  return std::all_of(keys.begin(), keys.end(),
+                     [&](const std::string& k) { return std::find(every.begin(), every.end(), k) != every.end(); });
+}
+
+}  // namespace
+
+TEST_CASE("every joint type has a table row whose name and keys make a joint of that type") {
+  for (std::size_t i = 0; i < kJointTypeCount; ++i) {
+    const auto type = static_cast<JointType>(i);
+    const JointTypeRow& row = type_row(type);
+    INFO("joint type ", i, ": ", std::string(row.name));
+    REQUIRE(row.type == type);
+    CHECK(type_named(kJointTypeTable, row.name) == type);
+    CHECK(0 <= row.holonomic_rows);
+    CHECK(row.holonomic_rows <= row.rows);
+    CHECK(row.rows <= 6);
+    CHECK(std::string(row.kernel) != "");
+    CHECK(takes_all(every_joint_key(), joint_keys(type)));
+    const Model m = parse_model(scene_with(item_with(joint_keys(type), row.name)), "tables.yaml");
+    REQUIRE(m.joints.size() == 3);
+    CHECK(m.joints[2].type == type);
+    const Analysis a = analyse(m);
+    CHECK(a.constraints[2].joint_type == type);
+    CHECK(a.constraints[2].rows == row.rows);
+    CHECK(a.constraints[2].holonomic_rows == row.holonomic_rows);
+    CHECK(a.constraints[2].kernel == row.kernel);
+  }
+}
+
+TEST_CASE("every driver type has a table row whose name and keys make a driver of that type") {
+  for (std::size_t i = 0; i < kDriverTypeCount; ++i) {
+    const auto type = static_cast<DriverType>(i);
+    const DriverTypeRow& row = type_row(type);
+    INFO("driver type ", i, ": ", std::string(row.name));
+    REQUIRE(row.type == type);
+    CHECK(type_named(kDriverTypeTable, row.name) == type);
+    CHECK(takes_all(every_driver_key(), driver_keys(type)));
+    const Model m = parse_model(scene_with("drivers:\n" + item_with(driver_keys(type), row.name)), "tables.yaml");
+    REQUIRE(m.drivers.size() == 1);
+    CHECK(m.drivers[0].type == type);
+    const Analysis a = analyse(m);
+    CHECK(a.constraints[2].driver_type == type);
+    CHECK(a.constraints[2].rows == row.rows);
+    CHECK(a.constraints[2].kernel == row.kernel);
+  }
+}
+
+TEST_CASE("every force type has a table row whose name and keys make a force of that type") {
+  for (std::size_t i = 0; i < kForceTypeCount; ++i) {
+    const auto type = static_cast<ForceType>(i);
+    const ForceTypeRow& row = type_row(type);
+    INFO("force type ", i, ": ", std::string(row.name));
+    REQUIRE(row.type == type);
+    CHECK(type_named(kForceTypeTable, row.name) == type);
+    CHECK(takes_all(every_force_key(), force_keys(type)));
+    const Model m = parse_model(scene_with("forces:\n" + item_with(force_keys(type), row.name)), "tables.yaml");
+    REQUIRE(m.forces.size() == 1);
+    CHECK(m.forces[0].type == type);
+  }
+}
+
+TEST_CASE("every input type has a table row whose name and keys make an input of that type") {
+  for (std::size_t i = 0; i < kInputTypeCount; ++i) {
+    const auto type = static_cast<InputType>(i);
+    const InputTypeRow& row = type_row(type);
+    INFO("input type ", i, ": ", std::string(row.name));
+    REQUIRE(row.type == type);
+    CHECK(type_named(kInputTypeTable, row.name) == type);
+    CHECK(takes_all(every_input_key(), input_keys(type)));
+    const Model m = parse_model(scene_with("inputs:\n" + item_with(input_keys(type), row.name)), "tables.yaml");
+    REQUIRE(m.inputs.size() == 1);
+    CHECK(m.inputs[0].type == type);
+  }
+}
+
+TEST_CASE("every output type has a table row whose name and keys make an output of that type") {
+  for (std::size_t i = 0; i < kOutputTypeCount; ++i) {
+    const auto type = static_cast<OutputType>(i);
+    const OutputTypeRow& row = type_row(type);
+    INFO("output type ", i, ": ", std::string(row.name));
+    REQUIRE(row.type == type);
+    CHECK(type_named(kOutputTypeTable, row.name) == type);
+    CHECK(row.values >= 1);
+    CHECK(takes_all(every_output_key(), output_keys(type)));
+    // Joint outputs measure one coordinate: name the revolute joint.
+    std::string item = item_with(output_keys(type), row.name);
+    if (const std::size_t at = item.find("joint: slide"); at != std::string::npos) item.replace(at, 12, "joint: pin");
+    const Model m = parse_model(scene_with("outputs:\n" + item), "tables.yaml");
+    REQUIRE(m.outputs.size() == 1);
+    CHECK(m.outputs[0].type == type);
+  }
 }

@@ -72,8 +72,11 @@ mbrt::Vec3 gravity(Mechanism m) {
   switch (m) {
     case Mechanism::heavy_top: return {0, 0, -g};
     case Mechanism::andrews: return {0, 0, 0};
-    default: return {0, -g, 0};
+    case Mechanism::a01_pendulum:
+    case Mechanism::n_four_bar:
+    case Mechanism::chain: break;
   }
+  return {0, -g, 0};
 }
 
 std::vector<double> peer_steps(const Problem& p) {

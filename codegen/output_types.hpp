@@ -1,0 +1,41 @@
+// The output types a model file can name, one row each: signals the model
+// publishes. joint_position and joint_velocity of a revolute (rad, rad/s) or
+// prismatic (m, m/s) joint, measured from t = 0; body_pose (x, y, z,
+// e0..e3) and body_velocity (vx, vy, vz world; wx, wy, wz body axes) of a
+// body.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "type_table.hpp"
+
+namespace mbrt::codegen {
+
+enum class OutputType { joint_position, joint_velocity, body_pose, body_velocity };
+inline constexpr std::size_t kOutputTypeCount = 4;  // enumerators of OutputType
+
+struct OutputTypeRow {
+  OutputType type;
+  const char* name;
+  const char* keys;  // besides name and type
+  int values;        // per signal
+};
+
+inline constexpr std::array<OutputTypeRow, kOutputTypeCount> kOutputTypeTable{{
+    // type                      name              keys    values
+    {OutputType::joint_position, "joint_position", "joint", 1},
+    {OutputType::joint_velocity, "joint_velocity", "joint", 1},
+    {OutputType::body_pose,      "body_pose",      "body",  7},
+    {OutputType::body_velocity,  "body_velocity",  "body",  6},
+}};
+static_assert(rows_in_enum_order(kOutputTypeTable), "kOutputTypeTable needs one row per OutputType, in enum order");
+
+constexpr const OutputTypeRow& type_row(OutputType type) { return row_of(kOutputTypeTable, type); }
+
+// The keys an output of this type takes: name, type, then its own.
+Keys output_keys(OutputType type);
+// Every key some output type takes.
+Keys every_output_key();
+
+}  // namespace mbrt::codegen
