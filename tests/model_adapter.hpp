@@ -7,6 +7,10 @@
 
 #include <mbrt/model_api.hpp>
 
+// A model's step(State&) as a value (step is overloaded with the one that
+// takes the caller's Workspace): STEP_OF(mbrt::models::four_bar).
+#define STEP_OF(model) [](auto& s) { return model::step(s); }
+
 #define BENCH_MODEL(Tag, ns)                                                                                         \
   struct Tag {                                                                                                       \
     using State = mbrt::models::ns::State;                                                                           \

@@ -19,6 +19,7 @@
 #include "ball_offset.hpp"
 #include "knife_sled.hpp"
 #include "two_masses.hpp"
+#include "model_adapter.hpp"
 
 namespace {
 
@@ -143,9 +144,9 @@ TEST_CASE("rolling disk over 20 s: ideal contact does no work; ali3p's projectio
   };
   namespace pcst = mbrt::models::disk_rolling_pcst;
   namespace ali3p = mbrt::models::disk_rolling_ali3p;
-  const double pcst_drift = drift(pcst::initial_state, pcst::step,
+  const double pcst_drift = drift(pcst::initial_state, STEP_OF(pcst),
                                   [](const pcst::State& s) { return pcst::energy(s).total(); }, pcst::kStep);
-  const double ali3p_drift = drift(ali3p::initial_state, ali3p::step,
+  const double ali3p_drift = drift(ali3p::initial_state, STEP_OF(ali3p),
                                    [](const ali3p::State& s) { return ali3p::energy(s).total(); }, ali3p::kStep);
   MESSAGE("max |E - E0| over 20 s (E0 = 30.87 J): staggered-pcst " << pcst_drift << " J, ali3p " << ali3p_drift << " J");
   CHECK(pcst_drift < 1e-6);

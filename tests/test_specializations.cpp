@@ -46,6 +46,7 @@
 #include "slider_crank_spatial.hpp"
 #include "two_masses_general.hpp"
 #include "two_masses_special.hpp"
+#include "model_adapter.hpp"
 
 namespace {
 
@@ -99,7 +100,7 @@ bool applies(const std::string& model, std::initializer_list<const char*> names)
 // Largest difference between the models <tag>_special and <tag>_general.
 #define DIFFERENCE_FROM_GENERAL(tag)                                                                         \
   max_difference(mbrt::models::tag##_special::initial_state(), mbrt::models::tag##_general::initial_state(), \
-                 mbrt::models::tag##_special::step, mbrt::models::tag##_general::step, kSteps)
+                 STEP_OF(mbrt::models::tag##_special), STEP_OF(mbrt::models::tag##_general), kSteps)
 
 TEST_CASE("single stage, folded weights, no drivers: the A01 pendulum equals the general code") {
   CHECK(applies("a01_pendulum.yaml", {"single_stage", "folded_weights", "no_drivers"}));
@@ -116,7 +117,7 @@ TEST_CASE("principal axes and the sparse factor: the four-bar equals the general
 // (--no-specialize=planar), of the states and of the multipliers.
 #define DIFFERENCE_FROM_SPATIAL(tag)                                                                         \
   max_difference(mbrt::models::tag##_planar::initial_state(), mbrt::models::tag##_spatial::initial_state(), \
-                 mbrt::models::tag##_planar::step, mbrt::models::tag##_spatial::step, kSteps)
+                 STEP_OF(mbrt::models::tag##_planar), STEP_OF(mbrt::models::tag##_spatial), kSteps)
 
 template <class A, class B, class StepA, class StepB>
 double multiplier_difference(A a, B b, StepA step_a, StepB step_b) {
@@ -131,7 +132,7 @@ double multiplier_difference(A a, B b, StepA step_a, StepB step_b) {
 
 #define MULTIPLIER_DIFFERENCE_FROM_SPATIAL(tag)                                                            \
   multiplier_difference(mbrt::models::tag##_planar::initial_state(), mbrt::models::tag##_spatial::initial_state(), \
-                        mbrt::models::tag##_planar::step, mbrt::models::tag##_spatial::step)
+                        STEP_OF(mbrt::models::tag##_planar), STEP_OF(mbrt::models::tag##_spatial))
 
 constexpr double kMultiplierRoundOff = 1e-7;  // N: the multipliers are of order 10 and see 2/h^2 times phi
 // The same for staggered-pcst on the loops with redundant rows: the spatial
@@ -234,7 +235,7 @@ TEST_CASE("planar coordinates: the driven slider (joint_distance driver, prismat
   CHECK(DIFFERENCE_FROM_SPATIAL(driven_slider) < kRoundOff);
   CHECK(MULTIPLIER_DIFFERENCE_FROM_SPATIAL(driven_slider) < kMultiplierRoundOff);
   namespace m = mbrt::models::driven_slider_planar;
-  const m::State s = after_run(m::initial_state(), m::step);
+  const m::State s = after_run(m::initial_state(), STEP_OF(m));
   CHECK(s.rigid[0].r.x() == doctest::Approx(2.0).epsilon(1e-6));  // x = t^2 / 2 at t = 2 s
 }
 
@@ -246,7 +247,7 @@ TEST_CASE("planar coordinates: a boom on a distance driver, a carriage pushed by
   // on the boom's line through the pivot at the origin.
   namespace m = mbrt::models::boom_cylinder_planar;
   const m::State s0 = m::initial_state();
-  const m::State s = after_run(s0, m::step);
+  const m::State s = after_run(s0, STEP_OF(m));
   CHECK(std::abs(s.rigid[0].p[3]) > 0.05);
   CHECK(std::abs(s.rigid[1].r.norm() - s0.rigid[1].r.norm()) > 0.1);
 }
@@ -270,7 +271,7 @@ TEST_CASE("planar coordinates with every other specialization turned off equal t
   CHECK(a.planar.applies);
   CHECK(max_difference(mbrt::models::loaded_four_bar_planar::initial_state(),
                        mbrt::models::loaded_four_bar_planar_general::initial_state(),
-                       mbrt::models::loaded_four_bar_planar::step, mbrt::models::loaded_four_bar_planar_general::step,
+                       STEP_OF(mbrt::models::loaded_four_bar_planar), STEP_OF(mbrt::models::loaded_four_bar_planar_general),
                        kSteps) < kRoundOff);
 }
 
