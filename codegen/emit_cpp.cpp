@@ -18,7 +18,7 @@ GeneratedCode Emitter::run() {
 
 std::string Emitter::header() const {
   std::ostringstream o;
-  o << "// mbrt generated model '" << m_.name << "' from " << m_.file << "\n"
+  o << "// mbrt generated model '" << m_.name << "' from " << m_.file_name() << "\n"
     << "// scheme " << mbrt::scheme_name(scheme_kind()) << ", h = " << num(m_.solver.step) << " s, euler_updates = "
     << m_.solver.euler_updates << ". Generated code: regenerate, do not edit.\n"
     << "#pragma once\n\n#include <array>\n#include <cstddef>\n\n#include <mbrt/model_api.hpp>\n"

@@ -15,7 +15,7 @@ std::string signal_comment(const Model& m, const Output& out) {
 
 std::string lcm_types(const Model& m) {
   std::ostringstream o;
-  o << "// mbrt generated LCM types of model '" << m.name << "' from " << m.file << ".\n"
+  o << "// mbrt generated LCM types of model '" << m.name << "' from " << m.file_name() << ".\n"
     << "// Generated code: regenerate, do not edit.\n"
     << "package " << package_of(m) << ";\n\n"
     << "// The model's outputs, published by the HIL loop on " << state_channel(m) << ".\n"

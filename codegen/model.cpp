@@ -1,5 +1,7 @@
 #include "model.hpp"
 
+#include <filesystem>
+
 namespace mbrt::codegen {
 
 namespace {
@@ -19,5 +21,7 @@ const std::string& Model::body_name(int index) const {
   static const std::string ground = "ground";
   return index == kGround ? ground : bodies.at(static_cast<size_t>(index)).name;
 }
+
+std::string Model::file_name() const { return std::filesystem::path(file).filename().string(); }
 
 }  // namespace mbrt::codegen

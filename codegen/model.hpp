@@ -178,6 +178,9 @@ struct Model {
   SolverSettings solver;
 
   const std::string& body_name(int index) const;  // "ground" for kGround
+  // The file's name without its directory, for generated files: they must not
+  // depend on where the model was generated from.
+  std::string file_name() const;
 };
 
 // Reads and validates a model file. Throws ModelError naming the file, line,

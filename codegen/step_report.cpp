@@ -26,13 +26,14 @@ std::string json_string(const std::string& s) {
 }
 
 // ns_per_flop from the calibration file's first data row
-// (header model,scheme,flops_per_step,ns_per_step,ns_per_flop).
+// (header model,scheme,flops_per_step,ns_per_step,ns_per_flop). The report
+// names the file relative to the source tree, the same from every checkout.
 void read_calibration(StepReport& r) {
-  const fs::path file = fs::path(toolchain::kSourceRoot) / "timing" / "results" / "flop_calibration.csv";
-  std::ifstream in(file);
+  const std::string file = "timing/results/flop_calibration.csv";
+  std::ifstream in(fs::path(toolchain::kSourceRoot) / file);
   std::string header, row;
   if (!std::getline(in, header) || !std::getline(in, row)) {
-    r.calibration = "none: run timing/flop_calibration to write " + file.string();
+    r.calibration = "none: run timing/flop_calibration to write " + file;
     return;
   }
   std::istringstream fields(row);
@@ -41,7 +42,7 @@ void read_calibration(StepReport& r) {
     if (i == 0) model = field;
     if (i == 4) r.ns_per_flop = std::stod(field);
   }
-  r.calibration = file.string() + " (model " + model + ")";
+  r.calibration = file + " (model " + model + ")";
 }
 
 }  // namespace
