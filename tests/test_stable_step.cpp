@@ -1,4 +1,4 @@
-// The stable-step estimate of gen --report (codegen/stable_step.hpp): the
+// The stable-step estimate of gen --report (codegen/plan/stable_step.hpp): the
 // energy bound on the fastest rotation against closed forms, the spring
 // limit, and the warning a scheme's limit gives before the run.
 #include <doctest/doctest.h>

@@ -306,7 +306,7 @@ inline PlanarRows<1> planar_distance(const JointFrame& f, const PlanarMotion& m1
 }
 
 // Which vector of a prismatic joint's triad (a, b, c) lies in the plane with
-// the axis a; the other one is the plane's normal (codegen/planar_scene.cpp).
+// the axis a; the other one is the plane's normal (codegen/plan/planar_scene.cpp).
 enum class InPlane { b, c };
 
 // prismatic of joints.hpp with its axis in the plane: its two rows that do

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 #include <mbrt/model_api.hpp>
+#include <mbrt/runtime.hpp>
 
 namespace mbrt::models::a01_pendulum {
 
@@ -38,11 +40,86 @@ struct State {
   Eigen::Matrix<double, kConstraintRows, 1> lambda;
 };
 
+// The types step() works with (generated kernels' data).
+namespace detail {
+
+using Rows = Eigen::Matrix<double, kConstraintRows, 1>;
+using BodyVectors = std::array<mbrt::Vec6, kBodies>;  // [v; w_body] per body
+
+struct Kinematics {
+  std::array<mbrt::BodyPose, kBodies> pose;
+  std::array<mbrt::BodyVelocity, kBodies> vel;
+};
+
+struct Loads {
+  std::array<mbrt::Wrench, kBodies> w;
+  double elastic_energy;
+};
+
+// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
+// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
+struct ConstraintSystem {
+  mbrt::ConstraintRows<1> rows_bar;  // distance ground - bob, rows 0..0
+  Eigen::Matrix<double, 6, 1> mbt_0_0;  // M^-1 B^T: bar, bob
+  Eigen::Matrix<double, 1, 1> L_0_0;  // bar
+};
+
+namespace planar {
+
+inline constexpr int kPlanarRows = 1;  // of kConstraintRows
+using Rows = Eigen::Matrix<double, kPlanarRows, 1>;
+using BodyVectors = std::array<mbrt::Vec3, kBodies>;  // [v_i; v_j; omega_k], plane coordinates per body
+
+struct Kinematics {
+  std::array<mbrt::PlanarPose, kBodies> pose;
+  std::array<mbrt::PlanarVelocity, kBodies> vel;
+};
+
+struct Loads {
+  std::array<mbrt::PlanarWrench, kBodies> w;
+  double elastic_energy;
+};
+
+// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
+// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
+struct ConstraintSystem {
+  mbrt::PlanarRows<1> rows_bar;  // planar_distance ground - bob, rows 0..0
+  Eigen::Matrix<double, 3, 1> mbt_0_0;  // M^-1 B^T: bar, bob
+  Eigen::Matrix<double, 1, 1> L_0_0;  // bar
+};
+
+// Block LU factors of the position stage's Newton matrix G = B(q*) M^-1 B(q(t))^T:
+// G = L U with unit-diagonal L, U's diagonal blocks kept inverted.
+struct NewtonMatrix {
+  Eigen::Matrix<double, 1, 1> D_0;  // bar, inverted
+};
+
+}  // namespace planar
+
+}  // namespace detail
+
+// What step() works on. The caller owns it, so a real-time loop can keep it
+// in memory locked and touched before the loop starts; nothing in it
+// carries over from one step to the next.
+struct Workspace {
+  State last_good;  // the state at t, restored when a step fails
+  detail::planar::Kinematics k;
+  detail::planar::ConstraintSystem c;  // at t + h
+  detail::planar::ConstraintSystem c0;  // at t: the position stage's force directions
+  detail::planar::NewtonMatrix g;       // the position stage's Newton matrix
+  detail::planar::Loads l;
+};
+
+inline constexpr std::size_t kWorkspaceBytes = sizeof(Workspace);
+
 // The model file's initial state with consistent accelerations.
 State initial_state() noexcept;
 
-// Advances s by kStep. Allocates nothing, throws nothing, fixed work.
-// On a non-finite result or a lost factorization s keeps its old value.
+// Advances s by kStep in the caller's workspace. Allocates nothing, throws
+// nothing, fixed work. On a non-finite result or a lost factorization s
+// keeps its old value.
+mbrt::StepStatus step(State& s, Workspace& w) noexcept;
+// The same with a workspace on the stack, for tools and tests.
 mbrt::StepStatus step(State& s) noexcept;
 
 mbrt::Energy energy(const State& s) noexcept;

@@ -1,6 +1,6 @@
 // mbrt generated model 'four_bar': 3 bodies (3 rigid, 0 particles), 4 joints, 0 drivers, 20 constraint rows.
-// Scheme staggered-pcst. Stage order per step: explicit_stage -> kinematics ->
-// constraint_rows -> factorize -> (applied_loads -> implicit stage) x kStages.
+// Scheme staggered-pcst: the step is mbrt::schemes::staggered_step (include/mbrt/schemes/staggered.hpp)
+// over planar::Model, the model's types, constants and kernels below.
 // Left out for this scene:
 //   principal_axes: 2 principal-axis bodies: inertia products in M^-1 and the gyroscopic torques
 //   single_stage: no velocity-dependent loads: the second implicit stage
@@ -13,18 +13,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include <mbrt/natural_partitioning.hpp>
 #include <mbrt/reactions.hpp>
-#include <mbrt/runtime.hpp>
+#include <mbrt/schemes/staggered.hpp>
 
 namespace mbrt::models::four_bar {
 
 namespace {
 
 constexpr double h = kStep;
-constexpr int kStages = 1;  // implicit stages per step
 constexpr double kRegularization = 2.2001079968800978e-06;  // added to diag(S)
-constexpr int kPositionIterations = 2;  // Newton steps of the position stage
 constexpr double kNewtonShift = 220.0107996880098;  // added to diag(G) (3 redundant rows)
 constexpr double kStabilization = 1000.0;  // alpha, 1/s
 const mbrt::Vec3 kGravity = mbrt::Vec3(0.0, -9.8100000000000005, 0.0);
@@ -56,42 +53,22 @@ const mbrt::JointFrame pin_c_frame{mbrt::Vec3(0.0, -1.0, 0.0), mbrt::Vec3(3.0, 0
 
 // Force elements in body axes.
 
-using Rows = Eigen::Matrix<double, kConstraintRows, 1>;
-using BodyVectors = std::array<mbrt::Vec6, kBodies>;  // [v; w_body] per body
+// The model as the scheme's step (include/mbrt/schemes/) sees it: types,
+// constants and kernels.
+struct Model {
+using State = mbrt::models::four_bar::State;
+using Rows = detail::Rows;
+using BodyVectors = detail::BodyVectors;
+using Kinematics = detail::Kinematics;
+using Loads = detail::Loads;
+using ConstraintSystem = detail::ConstraintSystem;
+static constexpr mbrt::Scheme kScheme = mbrt::Scheme::staggered_pcst;
+static constexpr double kStep = h;
+static constexpr int kStages = 1;  // implicit passes per step
+static constexpr bool kPositionStage = true;
+static constexpr int kPositionIterations = 2;  // Newton steps of the position stage
 
-struct Kinematics {
-  std::array<mbrt::BodyPose, kBodies> pose;
-  std::array<mbrt::BodyVelocity, kBodies> vel;
-};
-
-struct Loads {
-  std::array<mbrt::Wrench, kBodies> w;
-  double elastic_energy;
-};
-
-// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
-// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
-struct ConstraintSystem {
-  mbrt::ConstraintRows<5> rows_pin_o;  // revolute ground - crank, rows 0..4
-  Eigen::Matrix<double, 6, 5> mbt_0_0;  // M^-1 B^T: pin_o, crank
-  mbrt::ConstraintRows<5> rows_pin_a;  // revolute crank - coupler, rows 5..9
-  Eigen::Matrix<double, 6, 5> mbt_1_0;  // M^-1 B^T: pin_a, crank
-  Eigen::Matrix<double, 6, 5> mbt_1_1;  // M^-1 B^T: pin_a, coupler
-  mbrt::ConstraintRows<5> rows_pin_b;  // revolute coupler - rocker, rows 10..14
-  Eigen::Matrix<double, 6, 5> mbt_2_1;  // M^-1 B^T: pin_b, coupler
-  Eigen::Matrix<double, 6, 5> mbt_2_2;  // M^-1 B^T: pin_b, rocker
-  mbrt::ConstraintRows<5> rows_pin_c;  // revolute rocker - ground, rows 15..19
-  Eigen::Matrix<double, 6, 5> mbt_3_2;  // M^-1 B^T: pin_c, rocker
-  Eigen::Matrix<double, 5, 5> L_3_3;  // pin_c
-  Eigen::Matrix<double, 5, 5> L_2_3;  // pin_b x pin_c
-  Eigen::Matrix<double, 5, 5> L_2_2;  // pin_b
-  Eigen::Matrix<double, 5, 5> L_1_2;  // pin_a x pin_b
-  Eigen::Matrix<double, 5, 5> L_0_0;  // pin_o
-  Eigen::Matrix<double, 5, 5> L_1_0;  // pin_a x pin_o
-  Eigen::Matrix<double, 5, 5> L_1_1;  // pin_a
-};
-
-std::array<mbrt::BodyVelocity, kBodies> velocities_of(const State& s) noexcept {
+static std::array<mbrt::BodyVelocity, kBodies> velocities_of(const State& s) noexcept {
   std::array<mbrt::BodyVelocity, kBodies> vel;
   vel[0] = mbrt::velocity_of(s.rigid[0]);
   vel[1] = mbrt::velocity_of(s.rigid[1]);
@@ -100,7 +77,7 @@ std::array<mbrt::BodyVelocity, kBodies> velocities_of(const State& s) noexcept {
 }
 
 // (s) => (u): generalized velocities [v; w_body] per body.
-BodyVectors generalized_velocities(const State& s) noexcept {
+static BodyVectors generalized_velocities(const State& s) noexcept {
   BodyVectors u;
   u[0] << s.rigid[0].v, s.rigid[0].w;
   u[1] << s.rigid[1].v, s.rigid[1].w;
@@ -109,13 +86,13 @@ BodyVectors generalized_velocities(const State& s) noexcept {
 }
 
 // (a) => (s): accelerations kept for the next step.
-void set_accelerations(const BodyVectors& a, State& s) noexcept {
+static void set_accelerations(const BodyVectors& a, State& s) noexcept {
   s.rigid_acceleration[0] = {a[0].head<3>(), a[0].tail<3>()};
   s.rigid_acceleration[1] = {a[1].head<3>(), a[1].tail<3>()};
   s.rigid_acceleration[2] = {a[2].head<3>(), a[2].tail<3>()};
 }
 
-BodyVectors accelerations_of(const State& s) noexcept {
+static BodyVectors accelerations_of(const State& s) noexcept {
   BodyVectors a;
   a[0] << s.rigid_acceleration[0].a, s.rigid_acceleration[0].alpha;
   a[1] << s.rigid_acceleration[1].a, s.rigid_acceleration[1].alpha;
@@ -124,16 +101,16 @@ BodyVectors accelerations_of(const State& s) noexcept {
 }
 
 // (s) => (k): pose and velocity of every body.
-void kinematics(const State& s, Kinematics& k) noexcept {
+static void kinematics(const State& s, Kinematics& k) noexcept {
   k.pose[0] = mbrt::pose_of(s.rigid[0]);  // crank
   k.pose[1] = mbrt::pose_of(s.rigid[1]);  // coupler
   k.pose[2] = mbrt::pose_of(s.rigid[2]);  // rocker
   k.vel = velocities_of(s);
 }
 
-// (k) => (l): applied forces (world) and torques (body axes) per body,
-// included, and the elastic energy stored.
-void applied_loads(const Kinematics& k, Loads& l) noexcept {
+// (k) => (l): applied forces (world) and torques (body axes) per body, and the elastic energy stored.
+static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, Loads& l) noexcept {
+  (void)s;
   l.w.fill(mbrt::Wrench{});
   l.elastic_energy = 0.0;
   l.w[0].f += crank_weight;
@@ -142,8 +119,7 @@ void applied_loads(const Kinematics& k, Loads& l) noexcept {
 }
 
 // (k, t) => (c.rows_*): constraint values, Jacobians and acceleration terms.
-void constraint_rows(const Kinematics& k, double t, ConstraintSystem& c) noexcept {
-  (void)t;
+static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {
   c.rows_pin_o = mbrt::revolute(pin_o_frame, mbrt::BodyMotion{kGroundPose, kGroundVelocity}, mbrt::BodyMotion{k.pose[0], k.vel[0]});
   c.rows_pin_a = mbrt::revolute(pin_a_frame, mbrt::BodyMotion{k.pose[0], k.vel[0]}, mbrt::BodyMotion{k.pose[1], k.vel[1]});
   c.rows_pin_b = mbrt::revolute(pin_b_frame, mbrt::BodyMotion{k.pose[1], k.vel[1]}, mbrt::BodyMotion{k.pose[2], k.vel[2]});
@@ -151,7 +127,7 @@ void constraint_rows(const Kinematics& k, double t, ConstraintSystem& c) noexcep
 }
 
 // (c.rows_*) => (c.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.
-void constraint_directions(ConstraintSystem& c) noexcept {
+static void constraint_directions(ConstraintSystem& c) noexcept {
   c.mbt_0_0 = mbrt::inverse_mass_times_transpose(crank_mass, c.rows_pin_o.J2);
   c.mbt_1_0 = mbrt::inverse_mass_times_transpose(crank_mass, c.rows_pin_a.J1);
   c.mbt_1_1 = mbrt::inverse_mass_times_transpose(coupler_mass, c.rows_pin_a.J2);
@@ -162,7 +138,7 @@ void constraint_directions(ConstraintSystem& c) noexcept {
 
 // (c.rows_*) => (c.mbt_*, c.L_*): M^-1 B^T, then S block by block in
 // elimination order (0 fill blocks); false if a pivot is not positive.
-bool factorize(ConstraintSystem& c) noexcept {
+static bool factorize(ConstraintSystem& c) noexcept {
   bool positive = true;
   constraint_directions(c);
   // pin_c
@@ -190,7 +166,7 @@ bool factorize(ConstraintSystem& c) noexcept {
 }
 
 // (c.L_*, x) => (x): x := S^-1 x by forward and backward substitution.
-void solve(const ConstraintSystem& c, Rows& x) noexcept {
+static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   {  // pin_c
     Eigen::Matrix<double, 5, 1> y = x.segment<5>(15);
     mbrt::solve_lower(c.L_3_3, y);
@@ -240,7 +216,7 @@ void solve(const ConstraintSystem& c, Rows& x) noexcept {
 }
 
 // (c, u) => (B u)
-Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
+static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   Rows y;
   y.segment<5>(0) = c.rows_pin_o.J2 * u[0];
   y.segment<5>(5) = c.rows_pin_a.J1 * u[0] + c.rows_pin_a.J2 * u[1];
@@ -250,7 +226,7 @@ Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
 }
 
 // (c, lambda) => (u): u -= scale M^-1 B^T lambda
-void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
+static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
                                 BodyVectors& u) noexcept {
   u[0] -= scale * (c.mbt_0_0 * lambda.segment<5>(0));
   u[0] -= scale * (c.mbt_1_0 * lambda.segment<5>(5));
@@ -261,7 +237,7 @@ void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, d
 }
 
 // (c) => (phi), (c) => (quad): stacked position residuals and acceleration terms.
-Rows stacked_phi(const ConstraintSystem& c) noexcept {
+static Rows stacked_phi(const ConstraintSystem& c) noexcept {
   Rows y;
   y.segment<5>(0) = c.rows_pin_o.phi;
   y.segment<5>(5) = c.rows_pin_a.phi;
@@ -270,7 +246,7 @@ Rows stacked_phi(const ConstraintSystem& c) noexcept {
   return y;
 }
 
-Rows stacked_quad(const ConstraintSystem& c) noexcept {
+static Rows stacked_quad(const ConstraintSystem& c) noexcept {
   Rows y;
   y.segment<5>(0) = c.rows_pin_o.quad;
   y.segment<5>(5) = c.rows_pin_a.quad;
@@ -280,12 +256,12 @@ Rows stacked_quad(const ConstraintSystem& c) noexcept {
 }
 
 // (c, u) => (phi_dot = B u + phi_t): velocity residuals.
-Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {
+static Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   return jacobian_times(c, u);  // no drivers: phi_t = 0
 }
 
 // (l) => (M^-1 F) per body.
-BodyVectors free_accelerations(const Loads& l) noexcept {
+static BodyVectors free_accelerations(const Loads& l) noexcept {
   BodyVectors a;
   a[0] = mbrt::inverse_mass_times(crank_mass, l.w[0]);
   a[1] = mbrt::inverse_mass_times(coupler_mass, l.w[1]);
@@ -295,7 +271,7 @@ BodyVectors free_accelerations(const Loads& l) noexcept {
 
 // (s) => (J^-1 (-w x J w)) per body: the gyroscopic accelerations, which the
 // explicit stage's free rotation applies and the multipliers must balance.
-BodyVectors gyroscopic_accelerations(const State& s) noexcept {
+static BodyVectors gyroscopic_accelerations(const State& s) noexcept {
   BodyVectors g;
   g[0] << mbrt::Vec3::Zero(), mbrt::inverse_inertia_times(crank_mass, mbrt::gyroscopic_torque(crank_mass, s.rigid[0].w));  // crank
   g[1] << mbrt::Vec3::Zero(), mbrt::inverse_inertia_times(coupler_mass, mbrt::gyroscopic_torque(coupler_mass, s.rigid[1].w));  // coupler
@@ -303,7 +279,7 @@ BodyVectors gyroscopic_accelerations(const State& s) noexcept {
   return g;
 }
 
-void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {
+static void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {
   BodyVectors a = free_accelerations(l);
   const BodyVectors g = gyroscopic_accelerations(s);
   for (int b = 0; b < kBodies; ++b) a[b] += g[b];
@@ -315,23 +291,84 @@ void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& ph
   set_accelerations(a, s);
 }
 
-bool finite(const State& s) noexcept {
-  bool ok = std::isfinite(s.lambda.sum());
-  for (const mbrt::RigidState& x : s.rigid) {
-    ok = ok && mbrt::all_finite(x.r) && mbrt::all_finite(x.p) && mbrt::all_finite(x.v) && mbrt::all_finite(x.w);
-  }
-  for (const mbrt::ParticleState& x : s.particle) ok = ok && mbrt::all_finite(x.r) && mbrt::all_finite(x.v);
-  return ok;
+static State initial_state() noexcept {
+  State s;
+  s.rigid[0] = {mbrt::Vec3(0.0, 0.5, 0.0), mbrt::Vec4(1.0, 0.0, 0.0, 0.0),
+      mbrt::Vec3(0.5, 0.0, 0.0), mbrt::Vec3(0.0, 0.0, -1.0)};  // crank
+  s.rigid[1] = {mbrt::Vec3(1.5, 1.5, 0.0), mbrt::Vec4(1.0, 0.0, 0.0, 0.0),
+      mbrt::Vec3(1.0, 0.0, 0.0), mbrt::Vec3(0.0, 0.0, 0.0)};  // coupler
+  s.rigid[2] = {mbrt::Vec3(3.0, 1.0, 0.0), mbrt::Vec4(1.0, 0.0, 0.0, 0.0),
+      mbrt::Vec3(0.5, 0.0, 0.0), mbrt::Vec3(0.0, 0.0, -0.5)};  // rocker
+  Kinematics k;
+  kinematics(s, k);
+  ConstraintSystem c;
+  constraint_rows(k, s.t, c);
+  factorize(c);
+  Loads l;
+  applied_loads(k, s, l);
+  constraint_forces(c, l, stacked_phi(c), s);
+  return s;
 }
+
+static mbrt::Energy energy(const State& s) noexcept {
+  Kinematics k;
+  kinematics(s, k);
+  Loads l;
+  applied_loads(k, s, l);
+  const BodyVectors u = generalized_velocities(s);
+  mbrt::Energy e{0.0, l.elastic_energy};
+  e.kinetic += mbrt::kinetic_energy(crank_mass, u[0]);
+  e.potential -= crank_mass.m * kGravity.dot(k.pose[0].r);
+  e.kinetic += mbrt::kinetic_energy(coupler_mass, u[1]);
+  e.potential -= coupler_mass.m * kGravity.dot(k.pose[1].r);
+  e.kinetic += mbrt::kinetic_energy(rocker_mass, u[2]);
+  e.potential -= rocker_mass.m * kGravity.dot(k.pose[2].r);
+  return e;
+}
+
+static mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
+  Kinematics k;
+  kinematics(s, k);
+  ConstraintSystem c;
+  constraint_rows(k, s.t, c);
+  const Rows phi = stacked_phi(c);
+  const Rows phi_dot = velocity_residual(c, generalized_velocities(s));
+  BodyVectors a = accelerations_of(s);
+  const BodyVectors g = gyroscopic_accelerations(s);  // the free rotation's part
+  for (int b = 0; b < kBodies; ++b) a[b] += g[b];
+  const Rows phi_ddot = jacobian_times(c, a) + stacked_quad(c);
+  if (kConstraintRows == 0) return {0.0, 0.0, 0.0};
+  return {phi.cwiseAbs().maxCoeff(), phi_dot.cwiseAbs().maxCoeff(), phi_ddot.cwiseAbs().maxCoeff()};
+}
+
+static double quaternion_norm_error(const State& s) noexcept {
+  double e = 0.0;
+  for (const mbrt::RigidState& x : s.rigid) e = std::max(e, std::abs(x.p.norm() - 1.0));
+  return e;
+}
+
+static void reactions(const State& s, Reactions& r) noexcept {
+  Kinematics k;
+  kinematics(s, k);
+  ConstraintSystem c;
+  constraint_rows(k, s.t, c);
+  r[0] = mbrt::joint_reaction(-(c.rows_pin_o.J2.transpose() * s.lambda.segment<5>(0)), k.pose[0],
+      k.pose[0].r + k.pose[0].R * pin_o_frame.s2, 1.0, kGroundPose, pin_o_frame);  // pin_o
+  r[1] = mbrt::joint_reaction(-(c.rows_pin_a.J2.transpose() * s.lambda.segment<5>(5)), k.pose[1],
+      k.pose[1].r + k.pose[1].R * pin_a_frame.s2, 1.0, k.pose[0], pin_a_frame);  // pin_a
+  r[2] = mbrt::joint_reaction(-(c.rows_pin_b.J2.transpose() * s.lambda.segment<5>(10)), k.pose[2],
+      k.pose[2].r + k.pose[2].R * pin_b_frame.s2, 1.0, k.pose[1], pin_b_frame);  // pin_b
+  r[3] = mbrt::joint_reaction(-(c.rows_pin_c.J1.transpose() * s.lambda.segment<5>(15)), k.pose[2],
+      pin_c_frame.s2, -1.0, k.pose[2], pin_c_frame);  // pin_c
+}
+
+};
 
 // The step in planar coordinates: motion in one plane, per body two
 // coordinates and the rotation about the normal, the in-plane constraint rows only.
 namespace planar {
 
 constexpr int kNormal = 2;  // the plane x-y, normal to world z
-constexpr int kPlanarRows = 8;  // of kConstraintRows
-constexpr int kStages = 1;  // implicit stages per step
-constexpr int kPositionIterations = 2;  // Newton steps of the position stage
 constexpr double kNewtonShift = 220.0107996880098;  // added to diag(G) (3 redundant rows)
 const mbrt::PlanarPose kGroundPose = mbrt::planar_ground_pose();
 const mbrt::PlanarVelocity kGroundVelocity = mbrt::planar_ground_velocity();
@@ -344,42 +381,24 @@ const mbrt::Vec2 coupler_weight(0.0, -9.8100000000000005);
 const mbrt::PlanarInertia rocker_mass{1.0, 0.33335833333300002};
 const mbrt::Vec2 rocker_weight(0.0, -9.8100000000000005);
 
-using Rows = Eigen::Matrix<double, kPlanarRows, 1>;
-using BodyVectors = std::array<mbrt::Vec3, kBodies>;  // [v_i; v_j; omega_k], plane coordinates per body
+// The model as the scheme's step (include/mbrt/schemes/) sees it: types,
+// constants and kernels.
+struct Model {
+using State = mbrt::models::four_bar::State;
+using Workspace = mbrt::models::four_bar::Workspace;
+using Rows = detail::planar::Rows;
+using BodyVectors = detail::planar::BodyVectors;
+using Kinematics = detail::planar::Kinematics;
+using Loads = detail::planar::Loads;
+using ConstraintSystem = detail::planar::ConstraintSystem;
+using NewtonMatrix = detail::planar::NewtonMatrix;
+static constexpr mbrt::Scheme kScheme = mbrt::Scheme::staggered_pcst;
+static constexpr double kStep = h;
+static constexpr int kStages = 1;  // implicit passes per step
+static constexpr bool kPositionStage = true;
+static constexpr int kPositionIterations = 2;  // Newton steps of the position stage
 
-struct Kinematics {
-  std::array<mbrt::PlanarPose, kBodies> pose;
-  std::array<mbrt::PlanarVelocity, kBodies> vel;
-};
-
-struct Loads {
-  std::array<mbrt::PlanarWrench, kBodies> w;
-  double elastic_energy;
-};
-
-// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
-// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
-struct ConstraintSystem {
-  mbrt::PlanarRows<2> rows_pin_o;  // planar_revolute ground - crank, rows 0..1
-  Eigen::Matrix<double, 3, 2> mbt_0_0;  // M^-1 B^T: pin_o, crank
-  mbrt::PlanarRows<2> rows_pin_a;  // planar_revolute crank - coupler, rows 2..3
-  Eigen::Matrix<double, 3, 2> mbt_1_0;  // M^-1 B^T: pin_a, crank
-  Eigen::Matrix<double, 3, 2> mbt_1_1;  // M^-1 B^T: pin_a, coupler
-  mbrt::PlanarRows<2> rows_pin_b;  // planar_revolute coupler - rocker, rows 4..5
-  Eigen::Matrix<double, 3, 2> mbt_2_1;  // M^-1 B^T: pin_b, coupler
-  Eigen::Matrix<double, 3, 2> mbt_2_2;  // M^-1 B^T: pin_b, rocker
-  mbrt::PlanarRows<2> rows_pin_c;  // planar_revolute rocker - ground, rows 6..7
-  Eigen::Matrix<double, 3, 2> mbt_3_2;  // M^-1 B^T: pin_c, rocker
-  Eigen::Matrix<double, 2, 2> L_3_3;  // pin_c
-  Eigen::Matrix<double, 2, 2> L_2_3;  // pin_b x pin_c
-  Eigen::Matrix<double, 2, 2> L_2_2;  // pin_b
-  Eigen::Matrix<double, 2, 2> L_1_2;  // pin_a x pin_b
-  Eigen::Matrix<double, 2, 2> L_0_0;  // pin_o
-  Eigen::Matrix<double, 2, 2> L_1_0;  // pin_a x pin_o
-  Eigen::Matrix<double, 2, 2> L_1_1;  // pin_a
-};
-
-std::array<mbrt::PlanarVelocity, kBodies> velocities_of(const State& s) noexcept {
+static std::array<mbrt::PlanarVelocity, kBodies> velocities_of(const State& s) noexcept {
   std::array<mbrt::PlanarVelocity, kBodies> vel;
   vel[0] = mbrt::planar_velocity_of<kNormal>(s.rigid[0]);
   vel[1] = mbrt::planar_velocity_of<kNormal>(s.rigid[1]);
@@ -388,7 +407,7 @@ std::array<mbrt::PlanarVelocity, kBodies> velocities_of(const State& s) noexcept
 }
 
 // (s) => (u): (vx, vy, omega_z) per body.
-BodyVectors generalized_velocities(const State& s) noexcept {
+static BodyVectors generalized_velocities(const State& s) noexcept {
   BodyVectors u;
   u[0] = mbrt::planar_velocities<kNormal>(s.rigid[0]);
   u[1] = mbrt::planar_velocities<kNormal>(s.rigid[1]);
@@ -397,20 +416,20 @@ BodyVectors generalized_velocities(const State& s) noexcept {
 }
 
 // (u) => (s): the in-plane velocities; the others stay zero.
-void set_velocities(const BodyVectors& u, State& s) noexcept {
+static void set_velocities(const BodyVectors& u, State& s) noexcept {
   mbrt::set_planar_velocities<kNormal>(u[0], s.rigid[0]);
   mbrt::set_planar_velocities<kNormal>(u[1], s.rigid[1]);
   mbrt::set_planar_velocities<kNormal>(u[2], s.rigid[2]);
 }
 
 // (a) => (s): accelerations kept for the next step.
-void set_accelerations(const BodyVectors& a, State& s) noexcept {
+static void set_accelerations(const BodyVectors& a, State& s) noexcept {
   mbrt::set_planar_accelerations<kNormal>(a[0], s.rigid_acceleration[0]);
   mbrt::set_planar_accelerations<kNormal>(a[1], s.rigid_acceleration[1]);
   mbrt::set_planar_accelerations<kNormal>(a[2], s.rigid_acceleration[2]);
 }
 
-BodyVectors accelerations_of(const State& s) noexcept {
+static BodyVectors accelerations_of(const State& s) noexcept {
   BodyVectors a;
   a[0] = mbrt::planar_accelerations<kNormal>(s.rigid_acceleration[0]);
   a[1] = mbrt::planar_accelerations<kNormal>(s.rigid_acceleration[1]);
@@ -419,16 +438,16 @@ BodyVectors accelerations_of(const State& s) noexcept {
 }
 
 // (s) => (k): pose and velocity of every body.
-void kinematics(const State& s, Kinematics& k) noexcept {
+static void kinematics(const State& s, Kinematics& k) noexcept {
   k.pose[0] = mbrt::planar_pose_of<kNormal>(s.rigid[0]);  // crank
   k.pose[1] = mbrt::planar_pose_of<kNormal>(s.rigid[1]);  // coupler
   k.pose[2] = mbrt::planar_pose_of<kNormal>(s.rigid[2]);  // rocker
   k.vel = velocities_of(s);
 }
 
-// (k) => (l): applied forces (world) and torques (body axes) per body,
-// included, and the elastic energy stored.
-void applied_loads(const Kinematics& k, Loads& l) noexcept {
+// (k) => (l): applied forces (world) and torques (body axes) per body, and the elastic energy stored.
+static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, Loads& l) noexcept {
+  (void)s;
   l.w.fill(mbrt::PlanarWrench{});
   l.elastic_energy = 0.0;
   l.w[0].f += crank_weight;
@@ -437,8 +456,7 @@ void applied_loads(const Kinematics& k, Loads& l) noexcept {
 }
 
 // (k, t) => (c.rows_*): constraint values, Jacobians and acceleration terms.
-void constraint_rows(const Kinematics& k, double t, ConstraintSystem& c) noexcept {
-  (void)t;
+static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {
   c.rows_pin_o = mbrt::planar_revolute(pin_o_frame, mbrt::PlanarMotion{kGroundPose, kGroundVelocity}, mbrt::PlanarMotion{k.pose[0], k.vel[0]});
   c.rows_pin_a = mbrt::planar_revolute(pin_a_frame, mbrt::PlanarMotion{k.pose[0], k.vel[0]}, mbrt::PlanarMotion{k.pose[1], k.vel[1]});
   c.rows_pin_b = mbrt::planar_revolute(pin_b_frame, mbrt::PlanarMotion{k.pose[1], k.vel[1]}, mbrt::PlanarMotion{k.pose[2], k.vel[2]});
@@ -446,7 +464,7 @@ void constraint_rows(const Kinematics& k, double t, ConstraintSystem& c) noexcep
 }
 
 // (c.rows_*) => (c.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.
-void constraint_directions(ConstraintSystem& c) noexcept {
+static void constraint_directions(ConstraintSystem& c) noexcept {
   c.mbt_0_0 = mbrt::inverse_mass_times_transpose(crank_mass, c.rows_pin_o.J2);
   c.mbt_1_0 = mbrt::inverse_mass_times_transpose(crank_mass, c.rows_pin_a.J1);
   c.mbt_1_1 = mbrt::inverse_mass_times_transpose(coupler_mass, c.rows_pin_a.J2);
@@ -457,7 +475,7 @@ void constraint_directions(ConstraintSystem& c) noexcept {
 
 // (c.rows_*) => (c.mbt_*, c.L_*): M^-1 B^T, then S block by block in
 // elimination order (0 fill blocks); false if a pivot is not positive.
-bool factorize(ConstraintSystem& c) noexcept {
+static bool factorize(ConstraintSystem& c) noexcept {
   bool positive = true;
   constraint_directions(c);
   // pin_c
@@ -485,7 +503,7 @@ bool factorize(ConstraintSystem& c) noexcept {
 }
 
 // (c.L_*, x) => (x): x := S^-1 x by forward and backward substitution.
-void solve(const ConstraintSystem& c, Rows& x) noexcept {
+static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   {  // pin_c
     Eigen::Matrix<double, 2, 1> y = x.segment<2>(6);
     mbrt::solve_lower(c.L_3_3, y);
@@ -535,7 +553,7 @@ void solve(const ConstraintSystem& c, Rows& x) noexcept {
 }
 
 // (c, u) => (B u)
-Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
+static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   Rows y;
   y.segment<2>(0) = c.rows_pin_o.J2 * u[0];
   y.segment<2>(2) = c.rows_pin_a.J1 * u[0] + c.rows_pin_a.J2 * u[1];
@@ -545,7 +563,7 @@ Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
 }
 
 // (c, lambda) => (u): u -= scale M^-1 B^T lambda
-void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
+static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
                                 BodyVectors& u) noexcept {
   u[0] -= scale * (c.mbt_0_0 * lambda.segment<2>(0));
   u[0] -= scale * (c.mbt_1_0 * lambda.segment<2>(2));
@@ -556,7 +574,7 @@ void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, d
 }
 
 // (c) => (phi), (c) => (quad): stacked position residuals and acceleration terms.
-Rows stacked_phi(const ConstraintSystem& c) noexcept {
+static Rows stacked_phi(const ConstraintSystem& c) noexcept {
   Rows y;
   y.segment<2>(0) = c.rows_pin_o.phi;
   y.segment<2>(2) = c.rows_pin_a.phi;
@@ -565,7 +583,7 @@ Rows stacked_phi(const ConstraintSystem& c) noexcept {
   return y;
 }
 
-Rows stacked_quad(const ConstraintSystem& c) noexcept {
+static Rows stacked_quad(const ConstraintSystem& c) noexcept {
   Rows y;
   y.segment<2>(0) = c.rows_pin_o.quad;
   y.segment<2>(2) = c.rows_pin_a.quad;
@@ -575,12 +593,12 @@ Rows stacked_quad(const ConstraintSystem& c) noexcept {
 }
 
 // (c, u) => (phi_dot = B u + phi_t): velocity residuals.
-Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {
+static Rows velocity_residual(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   return jacobian_times(c, u);  // no drivers: phi_t = 0
 }
 
 // (l) => (M^-1 F) per body.
-BodyVectors free_accelerations(const Loads& l) noexcept {
+static BodyVectors free_accelerations(const Loads& l) noexcept {
   BodyVectors a;
   a[0] = mbrt::inverse_mass_times(crank_mass, l.w[0]);
   a[1] = mbrt::inverse_mass_times(coupler_mass, l.w[1]);
@@ -589,7 +607,7 @@ BodyVectors free_accelerations(const Loads& l) noexcept {
 }
 
 // (lambda) => (s.lambda): the in-plane rows of every spatial block.
-void store_multipliers(const Rows& lambda, State& s) noexcept {
+static void store_multipliers(const Rows& lambda, State& s) noexcept {
   s.lambda.segment<2>(0) = lambda.segment<2>(0);  // pin_o
   s.lambda.segment<2>(5) = lambda.segment<2>(2);  // pin_a
   s.lambda.segment<2>(10) = lambda.segment<2>(4);  // pin_b
@@ -598,46 +616,21 @@ void store_multipliers(const Rows& lambda, State& s) noexcept {
 
 // (s, accelerations at t) => (s): half kick of the velocities in the plane
 // (docs/staggered-pcst.md, eq. 1).
-void kick(State& s) noexcept {
+static void kick(State& s) noexcept {
   for (int b = 0; b < kRigidBodies; ++b) mbrt::planar_kick<kNormal>(s.rigid[b], s.rigid_acceleration[b], h);
   for (int b = 0; b < kParticles; ++b) mbrt::planar_kick<kNormal>(s.particle[b], s.particle_acceleration[b], h);
 }
 
 // (s) => (s): positions to t + h with the half-step velocities (eqs. 2-3); the
 // rotation about the normal by the spatial step's Cayley updates.
-void drift(State& s) noexcept {
+static void drift(State& s) noexcept {
   for (int b = 0; b < kRigidBodies; ++b) mbrt::planar_drift<kNormal>(s.rigid[b], h, kEulerUpdates);
   for (int b = 0; b < kParticles; ++b) mbrt::planar_drift<kNormal>(s.particle[b], h);
   s.t += h;
 }
 
-// (from) => (s): positions and time of another state.
-void set_positions(const State& from, State& s) noexcept {
-  for (int b = 0; b < kRigidBodies; ++b) {
-    s.rigid[b].r = from.rigid[b].r;
-    s.rigid[b].p = from.rigid[b].p;
-  }
-  for (int b = 0; b < kParticles; ++b) s.particle[b].r = from.particle[b].r;
-  s.t = from.t;
-}
-
-// Block LU factors of the position stage's Newton matrix G = B(q*) M^-1 B(q(t))^T:
-// G = L U with unit-diagonal L, U's diagonal blocks kept inverted.
-struct NewtonMatrix {
-  Eigen::Matrix<double, 2, 2> D_3;  // pin_c, inverted
-  Eigen::Matrix<double, 2, 2> L_2_3;
-  Eigen::Matrix<double, 2, 2> U_3_2;
-  Eigen::Matrix<double, 2, 2> D_2;  // pin_b, inverted
-  Eigen::Matrix<double, 2, 2> L_1_2;
-  Eigen::Matrix<double, 2, 2> U_2_1;
-  Eigen::Matrix<double, 2, 2> D_0;  // pin_o, inverted
-  Eigen::Matrix<double, 2, 2> L_1_0;
-  Eigen::Matrix<double, 2, 2> U_0_1;
-  Eigen::Matrix<double, 2, 2> D_1;  // pin_a, inverted
-};
-
 // (c0.mbt_*, c.rows_*) => (g): G block by block in S's elimination order.
-void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {
+static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {
   // pin_c
   g.D_3 = c.rows_pin_c.J1 * c0.mbt_3_2 + kNewtonShift * Eigen::Matrix<double, 2, 2>::Identity();
   g.L_2_3 = c.rows_pin_b.J2 * c0.mbt_3_2;
@@ -665,7 +658,7 @@ void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, New
 }
 
 // (g, x) => (x): x := G^-1 x by forward and backward substitution.
-void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {
+static void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {
   x.segment<2>(4) -= g.L_2_3 * x.segment<2>(6);
   x.segment<2>(2) -= g.L_1_2 * x.segment<2>(4);
   x.segment<2>(2) -= g.L_1_0 * x.segment<2>(0);
@@ -690,52 +683,12 @@ void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {
   }
 }
 
-// (c0, c, u_kick, last_good) => (s, k, c.rows_*): the position stage. The
-// first half kick's constraint forces act along M^-1 B(q(t))^T; their
-// multipliers are corrected so that the drift lands on Phi(q(t + h)) = 0
-// (RATTLE's position step: Andersen 1983, "Rattle: a velocity version of the
-// Shake algorithm", J. Comput. Phys. 52, eqs. 2.6-2.9), by Newton steps with
-// the matrix G = B(q*) M^-1 B(q(t))^T of the first drift q*. Correcting along
-// B(q(t))^T rather than B(q(t + h))^T is what keeps the energy of
-// fast-turning bodies bounded (docs/stability.md).
-void position_stage(const ConstraintSystem& c0, ConstraintSystem& c, BodyVectors& u_kick, const State& last_good,
-                    Kinematics& k, State& s) noexcept {
-  NewtonMatrix g;
-  factorize_newton(c0, c, g);
-  for (int i = 0; i < kPositionIterations; ++i) {
-    Rows x = stacked_phi(c);
-    Rows y = x;
-    solve_newton(g, x);
-    // G is close to singular where a long chain turns by more than its softest
-    // modes allow; a Newton step larger than S(q*)'s is then not trusted.
-    solve(c, y);
-    if (!(x.squaredNorm() <= 4.0 * y.squaredNorm())) x = y;
-    subtract_constraint_forces(c0, x, 1.0 / h, u_kick);
-    set_positions(last_good, s);
-    set_velocities(u_kick, s);
-    drift(s);
-    kinematics(s, k);
-    if (i + 1 < kPositionIterations) constraint_rows(k, s.t, c);
-  }
-}
-
-// (c, l, u_half) => (u): implicit stage. The end-of-step velocities satisfy
-// the velocity constraints, regularized by the penalty eps (eq. 5):
-//   (h/2) (S + 2 eps/h I) mu = B u_hat,  u = u_hat - h/2 M^-1 B^T mu.
-void implicit_stage(const ConstraintSystem& c, const Loads& l, const BodyVectors& u_half, BodyVectors& u) noexcept {
-  const BodyVectors a_free = free_accelerations(l);
-  for (int b = 0; b < kBodies; ++b) u[b] = u_half[b] + (0.5 * h) * a_free[b];
-  Rows mu = (2.0 / h) * velocity_residual(c, u);
-  solve(c, mu);
-  subtract_constraint_forces(c, mu, 0.5 * h, u);
-}
-
 // (c, l, phi, s) => (s.lambda, accelerations): multipliers of the stabilized
-// companion equation (eq. 7)
+// companion equation (docs/staggered-pcst.md eq. 7)
 //   (S + 2 eps/h I) lambda = B M^-1 F + quad + (2/h) (B u + alpha phi)
 // which the next explicit stage applies: it steers phi at the next step to
 // (1 - alpha h) phi. quad was evaluated at the predicted half-step velocity.
-void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {
+static void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {
   BodyVectors a = free_accelerations(l);
   Rows lambda = jacobian_times(c, a) + stacked_quad(c) +
              (2.0 / h) * (velocity_residual(c, generalized_velocities(s)) + kStabilization * phi);
@@ -745,138 +698,29 @@ void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& ph
   store_multipliers(lambda, s);
 }
 
-mbrt::StepStatus step(State& s) noexcept {
-  const State last_good = s;
-  const BodyVectors a_old = accelerations_of(s);
-  // Directions of the first half kick's constraint forces, at q(t).
-  Kinematics k;
-  kinematics(s, k);
-  ConstraintSystem c0;
-  constraint_rows(k, s.t, c0);
-  constraint_directions(c0);
-  kick(s);
-  BodyVectors u_kick = generalized_velocities(s);
-  drift(s);
-
-  // Constraint terms at the drifted positions, factorized once per step; the
-  // position stage moves the positions onto the constraints and keeps the factor.
-  kinematics(s, k);
-  ConstraintSystem c;
-  constraint_rows(k, s.t, c);
-  bool positive = factorize(c);
-  position_stage(c0, c, u_kick, last_good, k, s);
-  const BodyVectors u_half = generalized_velocities(s);
-
-  // Constraint terms at the new positions. The quadratic terms are taken at
-  // the predicted next half-step velocity u_half + h a_old, which the next
-  // explicit stage will drift with.
-  BodyVectors u = u_half;
-  for (int b = 0; b < kBodies; ++b) u[b] += h * a_old[b];
-  set_velocities(u, s);
-  k.vel = velocities_of(s);
-  constraint_rows(k, s.t, c);
-  constraint_directions(c);  // the factor stays that of the first drift
-
-  // Implicit stages: the first evaluates velocity-dependent loads at the
-  // predicted end-of-step velocities u_half + h/2 a_old, the next ones at the
-  // last result.
-  for (int b = 0; b < kBodies; ++b) u[b] = u_half[b] + (0.5 * h) * a_old[b];
-  Loads l;
-  for (int stage = 0; stage < kStages; ++stage) {
-    set_velocities(u, s);
-    k.vel = velocities_of(s);
-    applied_loads(k, l);
-    implicit_stage(c, l, u_half, u);
-  }
-  set_velocities(u, s);
-  constraint_forces(c, l, stacked_phi(c), s);
-
-  if (!finite(s)) {
-    s = last_good;
-    return mbrt::StepStatus::non_finite;
-  }
-  if (!positive) {
-    s = last_good;
-    return mbrt::StepStatus::not_positive;
-  }
-  return mbrt::StepStatus::ok;
-}
+};
 
 }  // namespace planar
 
 }  // namespace
 
-State initial_state() noexcept {
-  State s;
-  s.rigid[0] = {mbrt::Vec3(0.0, 0.5, 0.0), mbrt::Vec4(1.0, 0.0, 0.0, 0.0),
-      mbrt::Vec3(0.5, 0.0, 0.0), mbrt::Vec3(0.0, 0.0, -1.0)};  // crank
-  s.rigid[1] = {mbrt::Vec3(1.5, 1.5, 0.0), mbrt::Vec4(1.0, 0.0, 0.0, 0.0),
-      mbrt::Vec3(1.0, 0.0, 0.0), mbrt::Vec3(0.0, 0.0, 0.0)};  // coupler
-  s.rigid[2] = {mbrt::Vec3(3.0, 1.0, 0.0), mbrt::Vec4(1.0, 0.0, 0.0, 0.0),
-      mbrt::Vec3(0.5, 0.0, 0.0), mbrt::Vec3(0.0, 0.0, -0.5)};  // rocker
-  Kinematics k;
-  kinematics(s, k);
-  ConstraintSystem c;
-  constraint_rows(k, s.t, c);
-  factorize(c);
-  Loads l;
-  applied_loads(k, l);
-  constraint_forces(c, l, stacked_phi(c), s);
-  return s;
+State initial_state() noexcept { return Model::initial_state(); }
+
+mbrt::StepStatus step(State& s, Workspace& w) noexcept {
+  return mbrt::schemes::staggered_step<planar::Model>(s, w);
 }
 
-mbrt::StepStatus step(State& s) noexcept { return planar::step(s); }
-
-mbrt::Energy energy(const State& s) noexcept {
-  Kinematics k;
-  kinematics(s, k);
-  Loads l;
-  applied_loads(k, l);
-  const BodyVectors u = generalized_velocities(s);
-  mbrt::Energy e{0.0, l.elastic_energy};
-  e.kinetic += mbrt::kinetic_energy(crank_mass, u[0]);
-  e.potential -= crank_mass.m * kGravity.dot(k.pose[0].r);
-  e.kinetic += mbrt::kinetic_energy(coupler_mass, u[1]);
-  e.potential -= coupler_mass.m * kGravity.dot(k.pose[1].r);
-  e.kinetic += mbrt::kinetic_energy(rocker_mass, u[2]);
-  e.potential -= rocker_mass.m * kGravity.dot(k.pose[2].r);
-  return e;
+mbrt::StepStatus step(State& s) noexcept {
+  Workspace w;
+  return step(s, w);
 }
 
-mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
-  Kinematics k;
-  kinematics(s, k);
-  ConstraintSystem c;
-  constraint_rows(k, s.t, c);
-  const Rows phi = stacked_phi(c);
-  const Rows phi_dot = velocity_residual(c, generalized_velocities(s));
-  BodyVectors a = accelerations_of(s);
-  const BodyVectors g = gyroscopic_accelerations(s);  // the free rotation's part
-  for (int b = 0; b < kBodies; ++b) a[b] += g[b];
-  const Rows phi_ddot = jacobian_times(c, a) + stacked_quad(c);
-  if (kConstraintRows == 0) return {0.0, 0.0, 0.0};
-  return {phi.cwiseAbs().maxCoeff(), phi_dot.cwiseAbs().maxCoeff(), phi_ddot.cwiseAbs().maxCoeff()};
-}
+mbrt::Energy energy(const State& s) noexcept { return Model::energy(s); }
 
-double quaternion_norm_error(const State& s) noexcept {
-  double e = 0.0;
-  for (const mbrt::RigidState& x : s.rigid) e = std::max(e, std::abs(x.p.norm() - 1.0));
-  return e;
-}
+mbrt::ConstraintViolation constraint_violation(const State& s) noexcept { return Model::constraint_violation(s); }
 
-void reactions(const State& s, Reactions& r) noexcept {
-  Kinematics k;
-  kinematics(s, k);
-  ConstraintSystem c;
-  constraint_rows(k, s.t, c);
-  r[0] = mbrt::joint_reaction(-(c.rows_pin_o.J2.transpose() * s.lambda.segment<5>(0)), k.pose[0],
-      k.pose[0].r + k.pose[0].R * pin_o_frame.s2, 1.0, kGroundPose, pin_o_frame);  // pin_o
-  r[1] = mbrt::joint_reaction(-(c.rows_pin_a.J2.transpose() * s.lambda.segment<5>(5)), k.pose[1],
-      k.pose[1].r + k.pose[1].R * pin_a_frame.s2, 1.0, k.pose[0], pin_a_frame);  // pin_a
-  r[2] = mbrt::joint_reaction(-(c.rows_pin_b.J2.transpose() * s.lambda.segment<5>(10)), k.pose[2],
-      k.pose[2].r + k.pose[2].R * pin_b_frame.s2, 1.0, k.pose[1], pin_b_frame);  // pin_b
-  r[3] = mbrt::joint_reaction(-(c.rows_pin_c.J1.transpose() * s.lambda.segment<5>(15)), k.pose[2],
-      pin_c_frame.s2, -1.0, k.pose[2], pin_c_frame);  // pin_c
-}
+double quaternion_norm_error(const State& s) noexcept { return Model::quaternion_norm_error(s); }
+
+void reactions(const State& s, Reactions& r) noexcept { Model::reactions(s, r); }
 
 }  // namespace mbrt::models::four_bar

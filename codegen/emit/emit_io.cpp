@@ -75,12 +75,12 @@ void Emitter::input_load(std::ostringstream& o, const Input& in, const InputPlan
   const std::string n = in.name;
   o << "  {  // input " << n << ": " << type_row(in.type).name << " " << input_target(in) << " on "
     << m_.body_name(p.body2) << ", reaction on " << m_.body_name(p.body1) << "\n";
-  if (in.type == InputType::joint_force) {  // planar: along an axis in the plane (codegen/planar_scene.cpp)
+  if (in.type == InputType::joint_force) {  // planar: along an axis in the plane (codegen/plan/planar_scene.cpp)
     o << "    const mbrt::" << (planar_ ? "Vec2" : "Vec3") << " f = u[input::" << n << "] * (" << pose(p.body1) << ".R * "
       << n << "_axis" << (planar_ ? ".head<2>()" : "") << ");\n";
     if (p.body2 != kGround) o << "    mbrt::add_point_force(l.w[" << p.body2 << "], " << pose(p.body2) << ", " << n << "_s2, f);\n";
     if (p.body1 != kGround) o << "    mbrt::add_point_force(l.w[" << p.body1 << "], " << pose(p.body1) << ", " << n << "_s1, -f);\n";
-  } else if (planar_) {  // a torque about the normal, z in plane coordinates (codegen/planar_scene.cpp)
+  } else if (planar_) {  // a torque about the normal, z in plane coordinates (codegen/plan/planar_scene.cpp)
     o << "    const double t = u[input::" << n << "] * " << n << "_axis.z();\n";
     if (p.body2 != kGround) o << "    l.w[" << p.body2 << "].tau += t;\n";
     if (p.body1 != kGround) o << "    l.w[" << p.body1 << "].tau -= t;\n";

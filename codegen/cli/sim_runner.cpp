@@ -63,7 +63,7 @@ Sources sources() {
     return {{prefix / "include"}, share / "sim_driver.cpp", share / "rt", share / "hil_stub" / "pd_controller.cpp"};
   }
   const fs::path root = toolchain::kSourceRoot;
-  return {{root / "include", root / "rt" / "include"}, root / "codegen" / "sim_driver.cpp", root / "rt",
+  return {{root / "include", root / "rt" / "include"}, root / "codegen" / "sim" / "sim_driver.cpp", root / "rt",
           root / "hil_stub" / "pd_controller.cpp"};
 }
 

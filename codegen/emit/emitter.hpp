@@ -84,7 +84,7 @@ class Emitter {
   }
   int body_dofs() const { return planar_ ? 3 : 6; }
   // A constant vector in the axes of the code emitted: the planar step's are
-  // plane coordinates (codegen/planar_scene.hpp).
+  // plane coordinates (codegen/plan/planar_scene.hpp).
   Eigen::Vector3d axes(const Eigen::Vector3d& v) const { return planar_ ? Plane{a_.planar.normal}.coordinates(v) : v; }
   // Whether this emitter writes the step's stages (the spatial one does not when the step is planar).
   bool emits_step() const { return planar_ || !a_.planar.applies; }

@@ -118,7 +118,7 @@ static void drift(State& s) noexcept {
 }
 
 // Loads of loads_stage in the plane: torques about the normal, forces and springs
-// whose points lie in their bodies' planes (codegen/planar_scene.cpp).
+// whose points lie in their bodies' planes (codegen/plan/planar_scene.cpp).
 void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std::string& n) const {
   switch (f.type) {
     case ForceType::spring_damper:

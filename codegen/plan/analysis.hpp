@@ -79,7 +79,7 @@ struct Ali3pPlan {
   std::vector<double> alpha;  // per constraint block
 };
 
-// The planar specialization (codegen/planar_scene.cpp): whether the scene
+// The planar specialization (codegen/plan/planar_scene.cpp): whether the scene
 // moves in a plane of world coordinates, the plane's normal (world axis 0, 1
 // or 2), and each constraint block's in-plane rows, a subset of the spatial
 // block's rows (ConstraintBlock::spatial_rows).
