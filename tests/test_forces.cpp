@@ -199,6 +199,79 @@ TEST_CASE("axial_torque_world is value times the body-1 axis in world axes") {
   }
 }
 
+// A revolute or prismatic joint between two random bodies, body 2 turned by
+// theta about, or slid by d along, the joint axis from its pose at t = 0.
+struct JointPair {
+  mbrt::JointFrame frame;
+  Body b1, b2_at_zero;
+
+  explicit JointPair(Random& rnd) : b1(random_body(rnd)), b2_at_zero(random_body(rnd)) {
+    const Vec3 point = rnd.vec3(1.0);
+    const Vec3 a = rnd.vec3(1.0).normalized();
+    const Vec3 b = a.unitOrthogonal(), c = a.cross(b);
+    const Mat3& R1 = b1.pose.R;
+    const Mat3& R2 = b2_at_zero.pose.R;
+    frame = {R1.transpose() * (point - b1.pose.r), R2.transpose() * (point - b2_at_zero.pose.r),
+             R1.transpose() * a, R1.transpose() * b, R1.transpose() * c,
+             R2.transpose() * a, R2.transpose() * b, R2.transpose() * c, 0.0, 0.0};
+    b1.vel = {Vec3::Zero(), Vec3::Zero()};
+  }
+  Vec3 axis() const { return b1.pose.R * frame.a1; }
+  // Turned by theta at rate theta_dot: the rotation about the axis through the joint point.
+  Body turned(double theta, double theta_dot) const {
+    const Mat3 turn = Eigen::AngleAxisd(theta, axis()).toRotationMatrix();
+    const Vec3 point = world_point(b2_at_zero, frame.s2);
+    const Vec3 omega = theta_dot * axis();
+    Body b{BodyPose{point + turn * (b2_at_zero.pose.r - point), turn * b2_at_zero.pose.R}, {}};
+    b.vel = {omega.cross(b.pose.r - point), b.pose.R.transpose() * omega};
+    return b;
+  }
+  Body slid(double d, double d_dot) const {
+    return Body{BodyPose{b2_at_zero.pose.r + d * axis(), b2_at_zero.pose.R}, BodyVelocity{d_dot * axis(), Vec3::Zero()}};
+  }
+  mbrt::JointCoordinate revolute(const Body& b2) const {
+    return mbrt::revolute_coordinate(frame, BodyMotion{b1.pose, b1.vel}, BodyMotion{b2.pose, b2.vel});
+  }
+  mbrt::JointCoordinate prismatic(const Body& b2) const {
+    return mbrt::prismatic_coordinate(frame, BodyMotion{b1.pose, b1.vel}, BodyMotion{b2.pose, b2.vel});
+  }
+};
+
+TEST_CASE("joint_spring on a revolute joint: the torque is minus the derivative of the energy, the damper -c theta'") {
+  Random rnd(311);
+  const double eps = 1e-6;
+  for (int trial = 0; trial < 20; ++trial) {
+    const JointPair j(rnd);
+    const mbrt::JointSpring e{rnd.uniform(0.1, 10), rnd.uniform(0, 1), rnd.uniform(-1, 1)};
+    const double theta = rnd.uniform(-2, 2), theta_dot = rnd.uniform(-3, 3);
+    const mbrt::JointCoordinate q = j.revolute(j.turned(theta, theta_dot));
+    CHECK(q.position == doctest::Approx(theta).epsilon(1e-12));
+    CHECK(q.velocity == doctest::Approx(theta_dot).epsilon(1e-12));
+    const auto energy = [&](double angle) { return mbrt::joint_spring(e, j.revolute(j.turned(angle, 0.0))).energy; };
+    const double derivative = (energy(theta + eps) - energy(theta - eps)) / (2 * eps);
+    const mbrt::JointSpringLoad load = mbrt::joint_spring(e, q);
+    CHECK(load.value + e.damping * theta_dot == doctest::Approx(-derivative).epsilon(1e-7).scale(1.0));
+    CHECK(load.energy == doctest::Approx(0.5 * e.stiffness * (theta - e.rest) * (theta - e.rest)).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("joint_spring on a prismatic joint: the force is minus the derivative of the energy, the damper -c d'") {
+  Random rnd(312);
+  const double eps = 1e-6;
+  for (int trial = 0; trial < 20; ++trial) {
+    const JointPair j(rnd);
+    const mbrt::JointSpring e{rnd.uniform(1, 100), rnd.uniform(0, 5), rnd.uniform(-0.5, 0.5)};
+    const double d = rnd.uniform(-1, 1), d_dot = rnd.uniform(-2, 2);
+    const mbrt::JointCoordinate q = j.prismatic(j.slid(d, d_dot));
+    CHECK(q.position == doctest::Approx(d).epsilon(1e-12));
+    CHECK(q.velocity == doctest::Approx(d_dot).epsilon(1e-12));
+    const auto energy = [&](double slide) { return mbrt::joint_spring(e, j.prismatic(j.slid(slide, 0.0))).energy; };
+    const double derivative = (energy(d + eps) - energy(d - eps)) / (2 * eps);
+    const mbrt::JointSpringLoad load = mbrt::joint_spring(e, q);
+    CHECK(load.value + e.damping * d_dot == doctest::Approx(-derivative).epsilon(1e-7).scale(1.0));
+  }
+}
+
 TEST_CASE("gyroscopic_torque: Euler's equations for principal axes, equals FullInertia, perpendicular to w") {
   Random rnd(307);
   for (int trial = 0; trial < 20; ++trial) {

@@ -829,7 +829,7 @@ bodies:
 forces:
   - {type: gravity, body: a}
 )",
-                    "forces[0].type", 5, "expected one of: spring_damper, torque, force, got 'gravity'");
+                    "forces[0].type", 5, "expected one of: spring_damper, torque, force, joint_spring, got 'gravity'");
 }
 
 TEST_CASE("a negative spring stiffness is rejected") {
@@ -863,6 +863,43 @@ forces:
   - {type: spring_damper, body1: a, body2: a, point1: [0, 0, 0], point2: [0, 0, 1], stiffness: 1, rest_length: 1}
 )",
                     "forces[0].body2", 5, "must connect two different bodies");
+}
+
+TEST_CASE("a joint_spring takes its joint's bodies; rest defaults to 0") {
+  const Model m = parse_model(R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - {name: pin, type: revolute, body1: ground, body2: a, point: [0, 0, 0], axis: [0, 0, 1]}
+forces:
+  - {type: joint_spring, joint: pin, stiffness: 2.0, damping: 0.05}
+)",
+                              "m.yaml");
+  const Force& f = m.forces[0];
+  CHECK(f.type == ForceType::joint_spring);
+  CHECK(f.joint == 0);
+  CHECK(f.body1 == kGround);
+  CHECK(f.body2 == 0);
+  CHECK(f.stiffness == 2.0);
+  CHECK(f.damping == 0.05);
+  CHECK(f.rest == 0.0);
+}
+
+TEST_CASE("a joint_spring needs a revolute or prismatic joint and a non-negative stiffness and damping") {
+  const std::string head = R"(name: m
+bodies:
+  - {name: a, mass: 1, inertia: [1, 1, 1]}
+joints:
+  - {name: ball, type: spherical, body1: ground, body2: a, point: [0, 0, 0]}
+  - {name: pin, type: revolute, body1: ground, body2: a, point: [0, 0, 0], axis: [0, 0, 1]}
+forces:
+)";
+  CHECK_MODEL_ERROR(head + "  - {type: joint_spring, joint: ball, stiffness: 1}\n", "forces[0].joint", 8,
+                    "a joint_spring force needs a revolute or prismatic joint; 'ball' is not one");
+  CHECK_MODEL_ERROR(head + "  - {type: joint_spring, joint: pin, stiffness: -1}\n", "forces[0].stiffness", 8,
+                    "expected a number >= 0, got -1");
+  CHECK_MODEL_ERROR(head + "  - {type: joint_spring, joint: pin, stiffness: 1, damping: -0.5}\n", "forces[0].damping",
+                    8, "expected a number >= 0, got -0.5");
 }
 
 // ---- solver ----------------------------------------------------------------
@@ -1035,8 +1072,9 @@ std::string scene_with(const std::string& section) {
 }
 
 // A list item giving exactly `keys`, each with a value every element type that
-// takes it accepts; a key without one here fails the test.
-std::string item_with(const Keys& keys, const std::string& type_name) {
+// takes it accepts but the joint, named by `joint`; a key without one here
+// fails the test.
+std::string item_with(const Keys& keys, const std::string& type_name, const std::string& joint = "slide") {
   static const std::map<std::string, std::string> kValues = {
       {"name", "item"},          {"body1", "ground"},      {"body2", "b"},            {"body", "b"},
       {"joint", "slide"},        {"point", "[0, 0, 0.5]"}, {"axis", "[0, 0, 1]"},     {"axis1", "[1, 0, 0]"},
@@ -1044,9 +1082,10 @@ std::string item_with(const Keys& keys, const std::string& type_name) {
       {"lead", "0.1"},           {"radius", "0.5"},        {"center", "[0, 0, 0.5]"}, {"direction", "[1, 0, 0]"},
       {"plane_point", "[0, 0, 0]"}, {"plane_normal", "[0, 0, 1]"}, {"stiffness", "10"}, {"damping", "1"},
       {"rest_length", "0.5"},    {"value", "1"},           {"vector", "[1, 0, 0]"},   {"function", "{polynomial: [0]}"},
-      {"min", "-1"},             {"max", "1"},             {"safe", "0"}};
+      {"min", "-1"},             {"max", "1"},             {"safe", "0"},             {"rest", "0.1"}};
   std::map<std::string, std::string> values = kValues;
   values["type"] = type_name;
+  values["joint"] = joint;
   std::string item;
   for (const std::string& key : keys) {
     INFO("key: ", key);
@@ -1113,7 +1152,9 @@ TEST_CASE("every force type has a table row whose name and keys make a force of 
     REQUIRE(row.type == type);
     CHECK(type_named(kForceTypeTable, row.name) == type);
     CHECK(takes_all(every_force_key(), force_keys(type)));
-    const Model m = parse_model(scene_with("forces:\n" + item_with(force_keys(type), row.name)), "tables.yaml");
+    // A joint_spring needs a revolute or prismatic joint.
+    const std::string joint = type == ForceType::joint_spring ? "pin" : "slide";
+    const Model m = parse_model(scene_with("forces:\n" + item_with(force_keys(type), row.name, joint)), "tables.yaml");
     REQUIRE(m.forces.size() == 1);
     CHECK(m.forces[0].type == type);
   }

@@ -181,6 +181,10 @@ void Emitter::frame_constants(std::ostringstream& o) const {
           << m_.body_name(f.body) << "\n"
           << "const mbrt::Vec3 " << n << "_vector = " << vec3(axes(f.vector)) << ";\n";
         break;
+      case ForceType::joint_spring:
+        o << "const mbrt::JointSpring " << n << "{" << num(p.joint_spring.stiffness) << ", " << num(p.joint_spring.damping)
+          << ", " << num(p.joint_spring.rest) << "};  // joint_spring " << jname(f.joint) << ": stiffness, damping, rest\n";
+        break;
     }
   }
 }
@@ -223,6 +227,10 @@ void Emitter::model_members(std::ostringstream& o) const {
   }
   if (rattle() && emits_step()) o << "using NewtonMatrix = " << ns << "NewtonMatrix;\n";
   if (scheme_kind() == Scheme::staggered_nps) o << "using TreeSystem = " << ns << "TreeSystem;\n";
+  if (!emits_step()) {  // a planar scene: the step runs over planar::Model
+    o << "// The spatial kernels serve initial_state() and the diagnostics.\n\n";
+    return;
+  }
   o << "static constexpr mbrt::Scheme kScheme = mbrt::Scheme::" << scheme_identifier() << ";\n"
     << "static constexpr double kStep = h;\n";
   switch (scheme_kind()) {
@@ -389,10 +397,26 @@ void Emitter::loads_stage(std::ostringstream& o) const {
         o << "  mbrt::add_point_force(l.w[" << f.body << "], " << pose(f.body) << ", " << n << "_point, " << n
           << "_vector);\n";
         break;
+      case ForceType::joint_spring: joint_spring_load(o, f, n); break;
     }
   }
   for (size_t i = 0; i < m_.inputs.size(); ++i) input_load(o, m_.inputs[i], a_.inputs[i]);
   o << "}\n\n";
+}
+
+// A joint_spring on its joint's coordinate, about or along the joint's axis
+// like a joint input; the same text for the spatial and the planar step but
+// for the coordinate's kernel.
+void Emitter::joint_spring_load(std::ostringstream& o, const Force& f, const std::string& n) const {
+  const Joint& j = m_.joints[static_cast<size_t>(f.joint)];
+  const bool prismatic = j.type == JointType::prismatic;
+  const std::string frame = jname(f.joint) + "_frame";
+  o << "  {  // joint_spring " << j.name << " on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1)
+    << "\n    const mbrt::JointSpringLoad e = mbrt::joint_spring(" << n << ", mbrt::" << (planar_ ? "planar_" : "")
+    << (prismatic ? "prismatic" : "revolute") << "_coordinate(" << frame << ", " << motion(f.body1) << ", "
+    << motion(f.body2) << "));\n";
+  joint_axis_load(o, prismatic, f.body1, f.body2, "e.value", frame + ".a1", frame + ".s1", frame + ".s2");
+  o << "    l.elastic_energy += e.energy;\n  }\n";
 }
 
 void Emitter::constraint_stage(std::ostringstream& o) const {

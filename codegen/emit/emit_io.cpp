@@ -68,27 +68,35 @@ std::string Emitter::output_layout(const Output& out) const {
   return "";
 }
 
-// A torque input: value times the body-1 axis, on body2 with the reaction
-// on body1. A force input: along the axis, at the joint point of each body;
-// both points lie on the axis line, so the pair has no moment.
+// A torque `value` about the joint axis (`axis`, body-1 axes) on body2 with
+// the reaction on body1, or a force along it at the joint point of each body
+// (`s1`, `s2`); both points lie on the axis line, so the pair has no moment.
+// Planar: the force along an axis in the plane, the torque about the normal,
+// z in plane coordinates (codegen/plan/planar_scene.cpp).
+void Emitter::joint_axis_load(std::ostringstream& o, bool force, int body1, int body2, const std::string& value,
+                              const std::string& axis, const std::string& s1, const std::string& s2) const {
+  if (force) {
+    o << "    const mbrt::" << (planar_ ? "Vec2" : "Vec3") << " f = " << value << " * (" << pose(body1) << ".R * "
+      << axis << (planar_ ? ".head<2>()" : "") << ");\n";
+    if (body2 != kGround) o << "    mbrt::add_point_force(l.w[" << body2 << "], " << pose(body2) << ", " << s2 << ", f);\n";
+    if (body1 != kGround) o << "    mbrt::add_point_force(l.w[" << body1 << "], " << pose(body1) << ", " << s1 << ", -f);\n";
+  } else if (planar_) {
+    o << "    const double t = " << value << " * " << axis << ".z();\n";
+    if (body2 != kGround) o << "    l.w[" << body2 << "].tau += t;\n";
+    if (body1 != kGround) o << "    l.w[" << body1 << "].tau -= t;\n";
+  } else {
+    o << "    const mbrt::Vec3 t = " << value << " * (" << pose(body1) << ".R * " << axis << ");\n";
+    if (body2 != kGround) o << "    l.w[" << body2 << "].tau += " << pose(body2) << ".R.transpose() * t;\n";
+    if (body1 != kGround) o << "    l.w[" << body1 << "].tau -= " << pose(body1) << ".R.transpose() * t;\n";
+  }
+}
+
 void Emitter::input_load(std::ostringstream& o, const Input& in, const InputPlan& p) const {
   const std::string n = in.name;
   o << "  {  // input " << n << ": " << type_row(in.type).name << " " << input_target(in) << " on "
     << m_.body_name(p.body2) << ", reaction on " << m_.body_name(p.body1) << "\n";
-  if (in.type == InputType::joint_force) {  // planar: along an axis in the plane (codegen/plan/planar_scene.cpp)
-    o << "    const mbrt::" << (planar_ ? "Vec2" : "Vec3") << " f = u[input::" << n << "] * (" << pose(p.body1) << ".R * "
-      << n << "_axis" << (planar_ ? ".head<2>()" : "") << ");\n";
-    if (p.body2 != kGround) o << "    mbrt::add_point_force(l.w[" << p.body2 << "], " << pose(p.body2) << ", " << n << "_s2, f);\n";
-    if (p.body1 != kGround) o << "    mbrt::add_point_force(l.w[" << p.body1 << "], " << pose(p.body1) << ", " << n << "_s1, -f);\n";
-  } else if (planar_) {  // a torque about the normal, z in plane coordinates (codegen/plan/planar_scene.cpp)
-    o << "    const double t = u[input::" << n << "] * " << n << "_axis.z();\n";
-    if (p.body2 != kGround) o << "    l.w[" << p.body2 << "].tau += t;\n";
-    if (p.body1 != kGround) o << "    l.w[" << p.body1 << "].tau -= t;\n";
-  } else {
-    o << "    const mbrt::Vec3 t = u[input::" << n << "] * (" << pose(p.body1) << ".R * " << n << "_axis);\n";
-    if (p.body2 != kGround) o << "    l.w[" << p.body2 << "].tau += " << pose(p.body2) << ".R.transpose() * t;\n";
-    if (p.body1 != kGround) o << "    l.w[" << p.body1 << "].tau -= " << pose(p.body1) << ".R.transpose() * t;\n";
-  }
+  joint_axis_load(o, in.type == InputType::joint_force, p.body1, p.body2, "u[input::" + n + "]", n + "_axis", n + "_s1",
+                  n + "_s2");
   o << "  }\n";
 }
 

@@ -138,6 +138,7 @@ void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std
       o << "  mbrt::add_point_force(l.w[" << f.body << "], " << pose(f.body) << ", " << n << "_point, mbrt::Vec2("
         << n << "_vector.head<2>()));  // force on " << m_.body_name(f.body) << "\n";
       break;
+    case ForceType::joint_spring: joint_spring_load(o, f, n); break;
   }
 }
 

@@ -155,6 +155,7 @@ class Emitter {
   void velocity_helpers(std::ostringstream& o) const;
   void kinematics_function(std::ostringstream& o) const;
   void loads_stage(std::ostringstream& o) const;
+  void joint_spring_load(std::ostringstream& o, const Force& f, const std::string& n) const;  // spatial or planar
   void constraint_stage(std::ostringstream& o) const;
   void factorization(std::ostringstream& o) const;  // factorize(c) and solve(c, x) over the pattern of S
   void stacked(std::ostringstream& o, const std::string& member) const;  // Rows stacked_<member>(c)
@@ -188,6 +189,8 @@ class Emitter {
   std::string output_source(const Output& out) const;
   bool revolute_output(const Output& out) const;
   std::string output_layout(const Output& out) const;
+  void joint_axis_load(std::ostringstream& o, bool force, int body1, int body2, const std::string& value,
+                       const std::string& axis, const std::string& s1, const std::string& s2) const;
   void input_load(std::ostringstream& o, const Input& in, const InputPlan& p) const;
   void outputs_function(std::ostringstream& o) const;
 

@@ -1,5 +1,6 @@
 // The force types a model file can name, one row each: spring_damper and
-// torque act between two bodies, force on one.
+// torque act between two bodies, force on one, joint_spring across a
+// revolute or prismatic joint.
 #pragma once
 
 #include <array>
@@ -9,8 +10,8 @@
 
 namespace mbrt::codegen {
 
-enum class ForceType { spring_damper, torque, force };
-inline constexpr std::size_t kForceTypeCount = 3;  // enumerators of ForceType
+enum class ForceType { spring_damper, torque, force, joint_spring };
+inline constexpr std::size_t kForceTypeCount = 4;  // enumerators of ForceType
 
 struct ForceTypeRow {
   ForceType type;
@@ -23,6 +24,7 @@ inline constexpr std::array<ForceTypeRow, kForceTypeCount> kForceTypeTable{{
     {ForceType::spring_damper, "spring_damper", "body1 body2 point1 point2 stiffness damping rest_length"},
     {ForceType::torque,        "torque",        "body1 body2 axis value"},
     {ForceType::force,         "force",         "body point vector"},
+    {ForceType::joint_spring,  "joint_spring",  "joint stiffness damping rest"},
 }};
 static_assert(rows_in_enum_order(kForceTypeTable), "kForceTypeTable needs one row per ForceType, in enum order");
 

@@ -98,14 +98,16 @@ struct Driver {
 struct Force {
   ForceType type = ForceType::force;
   SourceLocation where;
-  int body1 = kGround;  // spring_damper, torque
-  int body2 = kGround;  // spring_damper, torque
+  int body1 = kGround;  // spring_damper, torque, joint_spring (the joint's)
+  int body2 = kGround;  // spring_damper, torque, joint_spring (the joint's)
   int body = kGround;   // force
+  int joint = -1;       // joint_spring: Model::joints index
   Eigen::Vector3d point1 = Eigen::Vector3d::Zero();  // spring_damper, world at t = 0
   Eigen::Vector3d point2 = Eigen::Vector3d::Zero();
-  double stiffness = 0.0;
-  double damping = 0.0;
+  double stiffness = 0.0;  // spring_damper N/m; joint_spring N m/rad or N/m
+  double damping = 0.0;    // spring_damper N s/m; joint_spring N m s/rad or N s/m
   double rest_length = 0.0;
+  double rest = 0.0;       // joint_spring: joint coordinate of zero force, rad or m from t = 0
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // torque: unit, world at t = 0, fixed in body 1
   double value = 0.0;                                // torque
   Eigen::Vector3d point = Eigen::Vector3d::Zero();   // force: world at t = 0, fixed in body

@@ -532,6 +532,22 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   return j;
 }
 
+// A joint named by `v` whose type is one of `types`; returns its index.
+int read_joint_ref(const Value& v, const Model& model, const std::vector<JointType>& types, const std::string& role) {
+  const std::string joint_name = read_string(v, "a joint name");
+  for (std::size_t i = 0; i < model.joints.size(); ++i) {
+    const Joint& j = model.joints[i];
+    if (j.name != joint_name) continue;
+    if (std::find(types.begin(), types.end(), j.type) == types.end()) {
+      std::string names;
+      for (JointType t : types) names += (names.empty() ? "" : " or ") + std::string(type_row(t).name);
+      fail(v, role + " needs a " + names + " joint; '" + joint_name + "' is not one");
+    }
+    return static_cast<int>(i);
+  }
+  fail(v, "unknown joint '" + excerpt(joint_name) + "'");
+}
+
 Force parse_force(const Value& item, const Model& model) {
   const Section s(item, every_force_key());
   Force f;
@@ -548,6 +564,16 @@ Force parse_force(const Value& item, const Model& model) {
     f.point = model.bodies[static_cast<std::size_t>(f.body)].position;
     if (auto v = s.find("point")) f.point = read_vector3(*v);
     f.vector = read_vector3(s.get("vector"));
+    return f;
+  }
+  if (f.type == ForceType::joint_spring) {
+    f.joint = read_joint_ref(s.get("joint"), model, {JointType::revolute, JointType::prismatic}, "a joint_spring force");
+    const Joint& j = model.joints[static_cast<std::size_t>(f.joint)];
+    f.body1 = j.body1;
+    f.body2 = j.body2;
+    f.stiffness = read_non_negative(s.get("stiffness"));
+    if (auto v = s.find("damping")) f.damping = read_non_negative(*v);
+    if (auto v = s.find("rest")) f.rest = read_number(*v);
     return f;
   }
 
@@ -571,22 +597,6 @@ Force parse_force(const Value& item, const Model& model) {
     f.value = read_number(s.get("value"));
   }
   return f;
-}
-
-// A joint named by `v` whose type is one of `types`; returns its index.
-int read_joint_ref(const Value& v, const Model& model, const std::vector<JointType>& types, const std::string& role) {
-  const std::string joint_name = read_string(v, "a joint name");
-  for (std::size_t i = 0; i < model.joints.size(); ++i) {
-    const Joint& j = model.joints[i];
-    if (j.name != joint_name) continue;
-    if (std::find(types.begin(), types.end(), j.type) == types.end()) {
-      std::string names;
-      for (JointType t : types) names += (names.empty() ? "" : " or ") + std::string(type_row(t).name);
-      fail(v, role + " needs a " + names + " joint; '" + joint_name + "' is not one");
-    }
-    return static_cast<int>(i);
-  }
-  fail(v, "unknown joint '" + excerpt(joint_name) + "'");
 }
 
 TimeFunction parse_function(const Value& v) {

@@ -330,7 +330,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   for (size_t i = 0; i < model.forces.size(); ++i) {
     const Force& f = model.forces[i];
     const std::string key = "forces[" + std::to_string(i) + "]";
-    ForcePlan plan{static_cast<int>(i), {}, {}, Eigen::Vector3d::Zero()};
+    ForcePlan plan{static_cast<int>(i), {}, {}, {}, Eigen::Vector3d::Zero()};
     switch (f.type) {
       case ForceType::spring_damper:
         plan.spring = {body_point(model, f.body1, f.point1, f.where, key + ".point1"),
@@ -346,6 +346,10 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
         break;
       case ForceType::force:
         plan.point = body_point(model, f.body, f.point, f.where, key + ".point");
+        break;
+      case ForceType::joint_spring:
+        plan.joint_spring = {f.stiffness, f.damping, f.rest};
+        if (f.damping != 0.0) a.velocity_dependent_forces = true;
         break;
     }
     a.forces.push_back(plan);

@@ -49,6 +49,7 @@ struct ForcePlan {
   int model_index;
   mbrt::SpringDamper spring;  // spring_damper
   mbrt::AxialTorque torque;   // torque
+  mbrt::JointSpring joint_spring;  // joint_spring, on its joint's coordinate (frame: Analysis::constraints[joint])
   Eigen::Vector3d point;      // force: body-frame point
 };
 

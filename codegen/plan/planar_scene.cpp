@@ -117,6 +117,7 @@ std::string force_refusal(const Plane& plane, const Force& f, const ForcePlan& p
     case ForceType::torque: return plane.along_normal(f.axis) ? "" : "a torque is not about " + plane.axis_name();
     case ForceType::force:
       return plane.contains(f.vector) && plane.contains(p.point) ? "" : "a force is out of its body's " + plane.name() + " plane";
+    case ForceType::joint_spring: return "";  // in the plane when its joint is (planar_joint)
   }
   return "";
 }
@@ -187,7 +188,7 @@ PlanarPlan plan_planar(const Model& model, const Analysis& a) {
       // Turning about the normal, a principal axis, no body has a gyroscopic
       // torque: without dampers (and Baumgarte's velocity term) one implicit pass.
       const bool damped = std::any_of(model.forces.begin(), model.forces.end(), [](const Force& f) {
-        return f.type == ForceType::spring_damper && f.damping != 0.0;
+        return (f.type == ForceType::spring_damper || f.type == ForceType::joint_spring) && f.damping != 0.0;
       });
       const bool baumgarte = model.solver.scheme == mbrt::Scheme::baumgarte && plan.constraint_rows > 0;
       plan.stages = a.specialize.single_stage && !damped && !baumgarte ? 1 : 2;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "mbrt/joint_coordinates.hpp"
 #include "mbrt/joints.hpp"
 
 namespace mbrt {
@@ -55,6 +56,25 @@ struct AxialTorque {
 
 inline Vec3 axial_torque_world(const AxialTorque& t, const BodyPose& pose1) noexcept {
   return t.value * (pose1.R * t.axis1);
+}
+
+// Spring-damper across a revolute or prismatic joint, on its coordinate q
+// (angle or slide from t = 0, joint_coordinates.hpp): the torque about, or
+// the force along, the joint axis on body 2 (body 1 gets the opposite).
+struct JointSpring {
+  double stiffness;  // N m/rad or N/m
+  double damping;    // N m s/rad or N s/m
+  double rest;       // rad or m
+};
+
+struct JointSpringLoad {
+  double value;   // N m or N
+  double energy;  // stored elastic energy
+};
+
+inline JointSpringLoad joint_spring(const JointSpring& e, const JointCoordinate& q) noexcept {
+  const double stretch = q.position - e.rest;
+  return {-e.stiffness * stretch - e.damping * q.velocity, 0.5 * e.stiffness * stretch * stretch};
 }
 
 // Gyroscopic torque -w x (J w), body axes.

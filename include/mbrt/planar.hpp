@@ -324,15 +324,32 @@ inline PlanarRows<2> planar_prismatic(const JointFrame& f, const PlanarMotion& m
   return rows;
 }
 
-// Drivers: detail::driven of joints.hpp adds phi_t = -f' and -f'' to quad.
-
-// joint_angle_driver of joints.hpp on a revolute joint about +-z: the angle
-// from the in-plane b and c of its triad. The axis a = (0, 0, a_z) keeps its
-// direction, so theta' = a_z (omega2 - omega1) and quad is zero.
-inline PlanarRows<1> planar_joint_angle_driver(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2,
-                                               const TimeValue& target) noexcept {
+// revolute_coordinate of joint_coordinates.hpp on a revolute joint about
+// +-z: the angle from the in-plane b and c of its triad. The axis
+// a = (0, 0, a_z) keeps its direction, so theta' = a_z (omega2 - omega1).
+inline JointCoordinate planar_revolute_coordinate(const JointFrame& f, const PlanarMotion& m1,
+                                                  const PlanarMotion& m2) noexcept {
   const Vec2 b2 = m2.pose.R * f.b2.head<2>();
   const double theta = std::atan2((m1.pose.R * f.c1.head<2>()).dot(b2), (m1.pose.R * f.b1.head<2>()).dot(b2));
+  return {theta, f.a1.z() * (m2.vel.w - m1.vel.w)};
+}
+
+// prismatic_coordinate of joint_coordinates.hpp with the axis in the plane:
+// d = a1 . (x2 - x1), d' = a1' . (x2 - x1) + a1 . (x2' - x1').
+inline JointCoordinate planar_prismatic_coordinate(const JointFrame& f, const PlanarMotion& m1,
+                                                   const PlanarMotion& m2) noexcept {
+  const PlanarPoint a = planar_direction(m1, f.a1);
+  const PlanarDifference d = planar_joint_points(f, m1, m2);
+  return {a.x.dot(d.x), a.x_dot.dot(d.x) + a.x.dot(d.x_dot)};
+}
+
+// Drivers: detail::driven of joints.hpp adds phi_t = -f' and -f'' to quad.
+
+// joint_angle_driver of joints.hpp on a revolute joint about +-z; quad is
+// zero since the axis keeps its direction.
+inline PlanarRows<1> planar_joint_angle_driver(const JointFrame& f, const PlanarMotion& m1, const PlanarMotion& m2,
+                                               const TimeValue& target) noexcept {
+  const double theta = planar_revolute_coordinate(f, m1, m2).position;
   const double a_z = f.a1.z();
   return detail::driven(PlanarRow{wrap_angle(theta - target.f), {0.0, 0.0, -a_z}, {0.0, 0.0, a_z}, 0.0}, target);
 }

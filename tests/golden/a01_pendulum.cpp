@@ -47,11 +47,7 @@ using BodyVectors = detail::BodyVectors;
 using Kinematics = detail::Kinematics;
 using Loads = detail::Loads;
 using ConstraintSystem = detail::ConstraintSystem;
-static constexpr mbrt::Scheme kScheme = mbrt::Scheme::staggered_pcst;
-static constexpr double kStep = h;
-static constexpr int kStages = 1;  // implicit passes per step
-static constexpr bool kPositionStage = true;
-static constexpr int kPositionIterations = 2;  // Newton steps of the position stage
+// The spatial kernels serve initial_state() and the diagnostics.
 
 static std::array<mbrt::BodyVelocity, kBodies> velocities_of(const State& s) noexcept {
   std::array<mbrt::BodyVelocity, kBodies> vel;
