@@ -51,6 +51,26 @@ solver: {scheme: staggered-pcst, step: 1.0e-3}
   CHECK(mbrt::codegen::stable_step_warning(parse_model(kRodPendulum, "rod.yaml"), estimate_stable_step(parse_model(kRodPendulum, "rod.yaml"))).empty());
 }
 
+TEST_CASE("a stiff joint spring limits the step to 2 / sqrt(k / J) about its axis and is named") {
+  // A rotor with J = 0.05 kg m^2 about the joint axis z (tilted in the world by
+  // its orientation: 90 degrees about x puts body y on world z) and k = 5e6
+  // N m/rad, at rest at its rest angle (no energy to release).
+  const auto s = estimate_stable_step(parse_model(R"(name: stiff_rotor
+bodies:
+  - {name: rotor, mass: 1.5, inertia: [0.03, 0.05, 0.04], orientation: [0.7071067811865476, 0.7071067811865476, 0, 0]}
+joints:
+  - {name: shaft, type: revolute, body1: ground, body2: rotor, point: [0, 0, 0], axis: [0, 0, 1]}
+forces:
+  - {type: joint_spring, joint: shaft, stiffness: 5.0e6}
+solver: {scheme: staggered-pcst, step: 1.0e-3}
+)",
+                                                  "stiff_rotor.yaml"));
+  CHECK(s.stiffest_frequency == doctest::Approx(std::sqrt(5e6 / 0.05)).epsilon(1e-9));
+  CHECK(s.stiffest_element == "joint_spring shaft");
+  CHECK(s.stable_step == doctest::Approx(2.0 / std::sqrt(1e8)));
+  CHECK(s.exceeded);
+}
+
 TEST_CASE("a body spinning fast on a pivot is beyond the schemes with explicit constraint forces, and they say so") {
   const std::string spinner = std::string(MBRT_STRESS_MODELS) + "/spinner.yaml";
   mbrt::codegen::Model m = mbrt::codegen::load_model(spinner);

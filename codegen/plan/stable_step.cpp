@@ -8,6 +8,8 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include <mbrt/rotation.hpp>
+
 namespace mbrt::codegen {
 
 namespace {
@@ -114,18 +116,41 @@ StableStep estimate_stable_step(const Model& m) {
     }
   }
   bool loads = false;
-  for (const Force& f : m.forces) {
-    if (f.type != ForceType::spring_damper) {
-      loads = true;
-      continue;
-    }
-    const double stretch = (f.point2 - f.point1).norm() - f.rest_length;  // points: world at t = 0
-    energy += 0.5 * f.stiffness * stretch * stretch;
-    auto inverse_mass = [&](int b) { return b == kGround ? 0.0 : 1.0 / m.bodies[static_cast<size_t>(b)].mass; };
-    const double w = std::sqrt(f.stiffness * (inverse_mass(f.body1) + inverse_mass(f.body2)));
+  auto inverse_mass = [&](int b) { return b == kGround ? 0.0 : 1.0 / m.bodies[static_cast<size_t>(b)].mass; };
+  // 1 / (the body's moment of inertia about a world axis through its COM):
+  // the pin's is larger, so the frequency below is an upper bound.
+  auto inverse_moment = [&](int b, const Eigen::Vector3d& axis) {
+    if (b == kGround) return 0.0;
+    const Body& body = m.bodies[static_cast<size_t>(b)];
+    const Eigen::Matrix3d r = mbrt::rotation_matrix(body.orientation);
+    return 1.0 / axis.dot(r * body.inertia * r.transpose() * axis);
+  };
+  auto stiffest = [&](double w, const std::string& element) {
     if (w > s.stiffest_frequency) {
       s.stiffest_frequency = w;
-      s.stiffest_element = "spring_damper " + m.body_name(f.body1) + " - " + m.body_name(f.body2);
+      s.stiffest_element = element;
+    }
+  };
+  for (const Force& f : m.forces) {
+    switch (f.type) {
+      case ForceType::spring_damper: {
+        const double stretch = (f.point2 - f.point1).norm() - f.rest_length;  // points: world at t = 0
+        energy += 0.5 * f.stiffness * stretch * stretch;
+        stiffest(std::sqrt(f.stiffness * (inverse_mass(f.body1) + inverse_mass(f.body2))),
+                 "spring_damper " + m.body_name(f.body1) + " - " + m.body_name(f.body2));
+        break;
+      }
+      case ForceType::joint_spring: {
+        const Joint& j = m.joints[static_cast<size_t>(f.joint)];
+        energy += 0.5 * f.stiffness * f.rest * f.rest;  // the joint coordinate is 0 at t = 0
+        const double compliance = j.type == JointType::revolute
+                                      ? inverse_moment(j.body1, j.axis) + inverse_moment(j.body2, j.axis)
+                                      : inverse_mass(j.body1) + inverse_mass(j.body2);
+        stiffest(std::sqrt(f.stiffness * compliance), "joint_spring " + j.name);
+        break;
+      }
+      case ForceType::torque:
+      case ForceType::force: loads = true; break;
     }
   }
   s.energy_bound = energy;
