@@ -36,8 +36,8 @@ BENCH_MODEL(Ali3p, bricard_ali3p);
 struct Result {
   bool all_ok = true;
   double energy_error = 0.0;                        // max |E - E0|, J
-  mbrt::ConstraintViolation first_half{0.0, 0.0};   // max over 0..50 s
-  mbrt::ConstraintViolation second_half{0.0, 0.0};  // max over 50..100 s
+  mbrt::ConstraintViolation first_half{0.0, 0.0, 0.0};   // max over 0..50 s
+  mbrt::ConstraintViolation second_half{0.0, 0.0, 0.0};  // max over 50..100 s
   double p3_min_x = 1.0;                            // over the first 5 s
   double p3_max_x_later = -1.0;                     // over 2.5..7.5 s
 };

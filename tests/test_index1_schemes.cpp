@@ -42,7 +42,7 @@ namespace {
   [] {                                                                    \
     namespace m = mbrt::models::model;                                    \
     m::State s = m::initial_state();                                      \
-    mbrt::ConstraintViolation worst{0.0, 0.0};                            \
+    mbrt::ConstraintViolation worst{0.0, 0.0, 0.0};                            \
     for (long i = 1; i <= (steps); ++i) {                                 \
       REQUIRE(m::step(s) == mbrt::StepStatus::ok);                        \
       if (i % 100 == 0) {                                                 \

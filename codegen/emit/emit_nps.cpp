@@ -106,9 +106,8 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
   const TreePlan& tree = a_.tree;
   o << "// (k, c) => (t): the tree elimination, leaves first. IA of a body is its\n"
     << "// mass plus X^T (IA - W W^T) X of each child; false if a pivot is not positive.\n"
-    << "static bool factorize_tree([[maybe_unused]] const Kinematics& k, const ConstraintSystem& c, [[maybe_unused]] TreeSystem& t) noexcept {\n"
+    << "static bool factorize_tree([[maybe_unused]] const Kinematics& k, [[maybe_unused]] const ConstraintSystem& c,\n                           [[maybe_unused]] TreeSystem& t) noexcept {\n"
     << "  bool positive = true;\n";
-  if (blocks() == 0) o << "  (void)c;\n";
   for (const TreeBody& tb : tree.order) {
     if (!tb.leaf) o << "  t.IA_" << tb.body << " = mbrt::mass_matrix(" << mass_of(tb.body) << ");\n";
   }
@@ -178,11 +177,10 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
       << "// B u' = target on the tree rows and D^T (M u' - force) = 0. a_p = Q G^-1\n"
       << "// target is a particular solution per joint. Leaves first, then from the\n"
       << "// roots.\n"
-      << "static void tree_solve([[maybe_unused]] const TreeSystem& t, const BodyVectors& force, const Rows& target,\n"
+      << "static void tree_solve([[maybe_unused]] const TreeSystem& t, const BodyVectors& force, [[maybe_unused]] const Rows& target,\n"
       << "                TreeSolution& x) noexcept {\n"
       << "  BodyVectors& acc = x.acc;\n  BodyVectors& g = x.g;\n  BodyVectors& part = x.part;\n"
       << "  for (int b = 0; b < kBodies; ++b) {\n    g[b] = -force[b];\n    part[b].setZero();\n  }\n";
-    if (blocks() == 0) o << "  (void)target;\n";
   } else {
     o << "// (t, force) => (acc): u' = D z' with D^T (M u' - force) = 0, the tree's\n"
       << "// response to a force (with a momentum as force: the M-orthogonal\n"
@@ -247,19 +245,16 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
 void Emitter::nps_tree_multipliers(std::ostringstream& o) const {
   o << "// (t, x) => (tree rows of lambda): each tree joint's force on its child,\n"
     << "// -B^T lambda = IA (u' - a_p) + g.\n"
-    << "static void tree_multipliers([[maybe_unused]] const TreeSystem& t, const TreeSolution& x, Rows& lambda) noexcept {\n";
-  bool joints = false;
+    << "static void tree_multipliers([[maybe_unused]] const TreeSystem& t, [[maybe_unused]] const TreeSolution& x,\n                             [[maybe_unused]] Rows& lambda) noexcept {\n";
   for (const TreeBody& tb : a_.tree.order) {
     if (tb.joint < 0) continue;
     const std::string i = idx(tb.body);
-    joints = true;
     o << "  {  // " << body(tb.body).name << "\n"
       << "    " << rows_type(rows(tb.joint)) << " l = -(t.Q_" << i << ".transpose() * ("
       << ia_times(tb, "mbrt::Vec6(x.acc[" + i + "] - x.part[" + i + "])") << " + x.g[" << i << "]));\n"
       << "    mbrt::solve_lower_transposed(t.G_" << i << ", l);\n"
       << "    " << seg("lambda", tb.joint) << " = l;\n  }\n";
   }
-  if (!joints) o << "  (void)t;\n  (void)x;\n  (void)lambda;\n";
   o << "}\n\n";
 }
 
