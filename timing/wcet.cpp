@@ -32,11 +32,11 @@
 
 namespace {
 
-// The step's working memory, owned here as a real-time loop owns it.
-model::Workspace workspace;
-
 namespace model = mbrt::models::wcet_model;
 using Clock = std::chrono::steady_clock;
+
+// The step's working memory, owned here as a real-time loop owns it.
+model::Workspace workspace;
 
 double ns_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::nano>(b - a).count(); }
 
