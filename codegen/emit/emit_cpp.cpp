@@ -603,7 +603,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
   } else {
     o << (ali3p ? "  factorize(c, Rows::Constant(kRegularization));\n" : "  factorize(c);\n");
   }
-  o << "  Loads l;\n  " << loads_call() << ";\n  constraint_forces(" << (nps ? "c, t" : "c")
+  o << "  Loads l;\n  applied_loads(k, s, l);\n  constraint_forces(" << (nps ? "c, t" : "c")
     << ", l, stacked_phi(c), s);\n";
   if (ali3p) o << "  s.ali3p_lambda_star = s.lambda;\n";
   if (ali3p_weighted()) {
@@ -621,7 +621,7 @@ void Emitter::diagnostics(std::ostringstream& o) const {
   Kinematics k;
   kinematics(s, k);
   Loads l;
-  )" << loads_call() << R"(;
+  applied_loads(k, s, l);
   const BodyVectors u = generalized_velocities(s);
   mbrt::Energy e{0.0, l.elastic_energy};
 )";

@@ -89,8 +89,6 @@ void Emitter::staggered_stages(std::ostringstream& o) const {
   if (scheme_kind() == Scheme::blajer) correct_positions_function(o);
 }
 
-// (c, s) => (s): blajer's mass-orthogonal position correction (Blajer 1997,
-// eq. 38), dq = -M^-1 B^T S^-1 phi, rotations as body-frame increments.
 void Emitter::correct_positions_function(std::ostringstream& o) const {
   o << R"(// (c, s) => (s): mass-orthogonal position correction (Blajer eq. 38),
 // dq = -M^-1 B^T S^-1 phi, rotations applied as body-frame increments.

@@ -182,7 +182,6 @@ class Emitter {
   // emit_io.cpp: inputs (State::inputs, applied as loads) and outputs().
   bool has_inputs() const { return !m_.inputs.empty(); }
   bool has_outputs() const { return !m_.outputs.empty(); }
-  std::string loads_call() const { return "applied_loads(k, s, l)"; }
   void input_declarations(std::ostringstream& o) const;   // index constants, ranges, safe values
   void output_declarations(std::ostringstream& o) const;  // one flat array; each signal's first index and count
   std::string input_target(const Input& in) const;
