@@ -46,15 +46,21 @@ std::string Emitter::header() const {
   o << "}};\n\n";
   if (has_inputs()) input_declarations(o);
   if (has_outputs()) output_declarations(o);
+  if (tree_scheme()) tree_types(o);
   o << "// Everything that changes from step to step; the caller owns it.\n"
     << "struct State {\n"
     << "  double t = 0.0;\n"
     << "  std::array<mbrt::RigidState, kRigidBodies> rigid;     // see kBodyInfo\n"
     << "  std::array<mbrt::ParticleState, kParticles> particle;\n"
-    << "  // Accelerations at t, reused by the next step's explicit stage.\n"
+    << (tree_scheme() ? "  // The joint coordinates (rad or m from t = 0), their rates and accelerations:\n"
+                        "  // what step() advances; rigid holds the bodies they put where.\n"
+                        "  Dofs q, qd, qdd;\n"
+                        "  // Body accelerations and constraint multipliers at the state, which\n"
+                        "  // step() does not need: set by initial_state() and set_multipliers().\n"
+                      : "  // Accelerations at t, reused by the next step's explicit stage.\n")
     << "  std::array<mbrt::RigidAcceleration, kRigidBodies> rigid_acceleration;\n"
     << "  std::array<mbrt::Vec3, kParticles> particle_acceleration;\n"
-    << "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n"
+    << (tree_scheme() ? "" : "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n")
     << "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n"
     << (has_inputs() ? "  Inputs inputs;  // applied by step(); initial_state() sets the safe values\n" : "");
   if (scheme_kind() == Scheme::ali3p) {
@@ -76,11 +82,15 @@ std::string Emitter::header() const {
     << "mbrt::StepStatus step(State& s, Workspace& w) noexcept;\n"
     << "// The same with a workspace on the stack, for tools and tests.\n"
     << "mbrt::StepStatus step(State& s) noexcept;\n\n"
+    << (tree_scheme() ? "// (s) => (s.rigid_acceleration, s.lambda): the body accelerations and\n"
+                        "// multipliers that go with the joint coordinates.\n"
+                        "void set_multipliers(State& s) noexcept;\n\n"
+                      : "")
     << "mbrt::Energy energy(const State& s) noexcept;\n"
     << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept;\n"
     << "double quaternion_norm_error(const State& s) noexcept;  // max | |p| - 1 |\n\n"
     << "// Force and torque of every joint and driver on its body2 (kConstraintInfo\n"
-    << "// order), from the multipliers of the last step.\n"
+    << "// order), from the multipliers " << (tree_scheme() ? "at the state" : "of the last step") << ".\n"
     << "using Reactions = std::array<mbrt::JointReaction, kConstraintBlocks>;\n"
     << "void reactions(const State& s, Reactions& r) noexcept;\n\n"
     << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept;\n\n" : "")
@@ -103,6 +113,7 @@ void Emitter::constants(std::ostringstream& o) const {
       break;
     case Scheme::blajer:
     case Scheme::ali3p:
+    case Scheme::staggered_tree:
       break;  // in struct Model; ali3p's are per row
   }
   if (a_.gravity) o << "const mbrt::Vec3 kGravity = " << vec3(m_.gravity.value_or(Eigen::Vector3d::Zero())) << ";\n";
@@ -203,8 +214,17 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
     << "// in memory locked and touched before the loop starts; nothing in it\n"
     << "// carries over from one step to the next.\n"
     << "struct Workspace {\n"
-    << "  State last_good;  // the state at t, restored when a step fails\n"
-    << "  " << ns << "Kinematics k;\n"
+    << "  State last_good;  // the state at t, restored when a step fails\n";
+  if (tree_scheme()) {
+    o << "  HalfAngles half_angles;  // of s.q\n"
+      << "  Dofs rates;              // end-of-step rates, predicted\n"
+      << "  detail::Kinematics k;    // where loads other than gravity need the bodies\n"
+      << "  detail::Loads l;\n"
+      << "};\n\n"
+      << "inline constexpr std::size_t kWorkspaceBytes = sizeof(Workspace);\n\n";
+    return;
+  }
+  o << "  " << ns << "Kinematics k;\n"
     << "  " << ns << "ConstraintSystem c;  // at t + h\n";
   if (rattle()) {
     o << "  " << ns << "ConstraintSystem c0;  // at t: the position stage's force directions\n"
@@ -252,6 +272,13 @@ void Emitter::model_members(std::ostringstream& o) const {
       if (scheme_kind() == Scheme::staggered_nps) {
         o << "static constexpr int kCutRows = " << (nps_cuts() ? "detail::kCutRows" : "0") << ";\n";
       }
+      break;
+    case Scheme::staggered_tree:
+      o << "using Dofs = mbrt::models::" << m_.name << "::Dofs;\n"
+        << "using HalfAngles = mbrt::models::" << m_.name << "::HalfAngles;\n"
+        << "static constexpr int kStages = " << stages() << ";  // recursions per step\n"
+        << "static constexpr bool kExternalLoads = " << (tree_external_loads() ? "true" : "false")
+        << ";  // loads other than gravity\n";
       break;
   }
   o << "\n";
@@ -348,17 +375,19 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
   o << "  return a;\n}\n\n";
 }
 
-void Emitter::loads_stage(std::ostringstream& o) const {
-  const bool gyroscopic_torques = gyroscopic_loads() && any_gyroscopic();
+void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
+  const bool gyroscopic_torques = gyroscopic_loads() && any_gyroscopic() && !tree;
+  if (tree) o << "// The loads the recursion takes from outside: all but gravity and the\n// gyroscopic torques, which it holds itself.\n";
   o << "// (k" << (has_inputs() ? ", s.inputs" : "") << ") => (l): applied forces (world) and torques (body axes) per body";
   if (gyroscopic_torques || has_inputs()) {
     o << ",\n// " << (gyroscopic_torques ? "gyroscopic torques " : "") << (has_inputs() ? "inputs " : "") << "included";
   }
   o << ", and the elastic energy stored.\n"
-    << "static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, Loads& l) noexcept {\n"
+    << "static void " << (tree ? "tree_loads" : "applied_loads") << "([[maybe_unused]] const Kinematics& k, const State& s, Loads& l) noexcept {\n"
     << (has_inputs() ? "  const Inputs& u = s.inputs;\n" : "  (void)s;\n")
     << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    if (tree) continue;
     if (folded_weights()) o << "  l.w[" << i << "].f += " << weight_of(static_cast<int>(i)) << ";\n";
     else if (a_.gravity) o << "  l.w[" << i << "].f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
     if (gyroscopic(static_cast<int>(i)) && gyroscopic_loads()) {
@@ -595,6 +624,16 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
     for (size_t i = 0; i < m_.inputs.size(); ++i) o << (i ? ", " : "") << num(m_.inputs[i].safe);
     o << "};  // safe values\n";
   }
+  if (tree_scheme()) {
+    o << "  s.q.fill(0.0);\n  s.qd = {";
+    std::vector<double> rates(m_.bodies.size(), 0.0);
+    for (const TreeFrame& f : a_.tree_frames.frames) rates[static_cast<size_t>(f.body)] = f.rate0;
+    for (size_t k = 0; k < rates.size(); ++k) o << (k ? ", " : "") << num(rates[k]);
+    o << "};\n  HalfAngles ha;\n  half_angles(s.q, ha);\n  body_states(s.q, ha, s.qd, s);\n"
+      << "  Kinematics k;\n  kinematics(s, k);\n  Loads l;\n  tree_loads(k, s, l);\n"
+      << "  joint_accelerations(s.q, ha, s.qd, k, l, s.qdd);\n  set_multipliers(s);\n  return s;\n}\n\n";
+    return;
+  }
   const bool ali3p = scheme_kind() == Scheme::ali3p;
   const bool nps = scheme_kind() == Scheme::staggered_nps;
   o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n";
@@ -634,8 +673,8 @@ void Emitter::diagnostics(std::ostringstream& o) const {
   o << R"(  return e;
 }
 
-static mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
-  Kinematics k;
+static mbrt::ConstraintViolation constraint_violation(const State& )" << (tree_scheme() ? "given" : "s") << R"() noexcept {
+)" << (tree_scheme() ? "  State s = given;\n  set_multipliers(s);\n" : "") << R"(  Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
   constraint_rows(k, s.t, c);
@@ -676,6 +715,7 @@ std::string Emitter::source() const {
     << " constraint rows.\n"
     << "// Scheme " << mbrt::scheme_name(scheme_kind()) << ": the step is mbrt::schemes::"
     << (scheme_kind() == Scheme::ali3p ? "ali3p_step (include/mbrt/schemes/ali3p.hpp)"
+        : tree_scheme()                ? "tree_step (include/mbrt/schemes/tree.hpp)"
                                        : "staggered_step (include/mbrt/schemes/staggered.hpp)")
     << "\n// over " << (a_.planar.applies ? "planar::Model" : "Model") << ", the model's types, constants and kernels below.\n";
   o << "// Left out for this scene:";
@@ -684,7 +724,7 @@ std::string Emitter::source() const {
   if (!a_.planar.refusal.empty()) o << "\n// Kept: spatial coordinates, since " << a_.planar.refusal << ".";
   o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n"
     << "#include <mbrt/reactions.hpp>\n#include <mbrt/schemes/"
-    << (scheme_kind() == Scheme::ali3p ? "ali3p.hpp" : "staggered.hpp") << ">\n\n"
+    << (scheme_kind() == Scheme::ali3p ? "ali3p.hpp" : tree_scheme() ? "tree.hpp" : "staggered.hpp") << ">\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";
   constants(o);
   model_members(o);
@@ -706,7 +746,11 @@ void Emitter::kernels(std::ostringstream& o) const {
   loads_stage(o);
   constraint_stage(o);
   if (scheme_kind() != Scheme::staggered_nps) mass_products(o);
-  if (scheme_kind() == Scheme::ali3p) {
+  if (tree_scheme()) {
+    loads_stage(o, true);
+    constraint_forces_function(o, "");
+    tree_kernels(o);
+  } else if (scheme_kind() == Scheme::ali3p) {
     ali3p_stages(o);
   } else if (a_.planar.applies) {
     // The spatial multipliers serve initial_state(); the step is planar.
@@ -724,7 +768,8 @@ void Emitter::public_functions(std::ostringstream& o) const {
   const std::string stepper = a_.planar.applies ? "planar::Model" : "Model";
   o << "State initial_state() noexcept { return Model::initial_state(); }\n\n"
     << "mbrt::StepStatus step(State& s, Workspace& w) noexcept {\n  return mbrt::schemes::"
-    << (scheme_kind() == Scheme::ali3p ? "ali3p_step" : "staggered_step") << "<" << stepper << ">(s, w);\n}\n\n"
+    << (scheme_kind() == Scheme::ali3p ? "ali3p_step" : tree_scheme() ? "tree_step" : "staggered_step") << "<" << stepper << ">(s, w);\n}\n\n"
+    << (tree_scheme() ? "void set_multipliers(State& s) noexcept { Model::set_multipliers(s); }\n\n" : "")
     << "mbrt::StepStatus step(State& s) noexcept {\n  Workspace w;\n  return step(s, w);\n}\n\n"
     << "mbrt::Energy energy(const State& s) noexcept { return Model::energy(s); }\n\n"
     << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept { return Model::constraint_violation(s); }\n\n"
@@ -734,7 +779,15 @@ void Emitter::public_functions(std::ostringstream& o) const {
 }
 
 void Emitter::reactions_function(std::ostringstream& o) const {
-  o << "static void reactions(const State& s, Reactions& r) noexcept {\n";
+  if (tree_scheme()) {
+    o << "// (s) => (s.rigid_acceleration, s.lambda): what the joint coordinates imply,\n"
+      << "// from the index-1 multipliers S lambda = B M^-1 F + quad.\n"
+      << "static void set_multipliers(State& s) noexcept {\n"
+      << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n  factorize(c);\n"
+      << "  Loads l;\n  applied_loads(k, s, l);\n  constraint_forces(c, l, stacked_phi(c), s);\n}\n\n";
+  }
+  o << "static void reactions(const State& " << (tree_scheme() ? "given" : "s") << ", Reactions& r) noexcept {\n";
+  if (tree_scheme()) o << "  State s = given;\n  set_multipliers(s);\n";
   if (blocks() == 0) {
     o << "  (void)s;\n  (void)r;\n}\n\n";
     return;

@@ -154,7 +154,7 @@ class Emitter {
   void public_functions(std::ostringstream& o) const;  // initial_state(), step(), ... forwarding to struct Model
   void velocity_helpers(std::ostringstream& o) const;
   void kinematics_function(std::ostringstream& o) const;
-  void loads_stage(std::ostringstream& o) const;
+  void loads_stage(std::ostringstream& o, bool tree = false) const;  // tree: the recursion's external loads
   void joint_spring_load(std::ostringstream& o, const Force& f, const std::string& n) const;  // spatial or planar
   void constraint_stage(std::ostringstream& o) const;
   void factorization(std::ostringstream& o) const;  // factorize(c) and solve(c, x) over the pattern of S
@@ -203,6 +203,11 @@ class Emitter {
   void newton_matrix_type(std::ostringstream& o) const;  // emit_newton.cpp
   void newton_matrix(std::ostringstream& o) const;
   void staggered_stages(std::ostringstream& o) const;
+  // staggered-tree (emit_tree.cpp)
+  bool tree_scheme() const;
+  bool tree_external_loads() const;
+  void tree_types(std::ostringstream& o) const;  // kDofs, Dofs, HalfAngles
+  void tree_kernels(std::ostringstream& o) const;
 
   // emit_planar.cpp: namespace planar { ... step(s) } from a planar emitter.
   void planar_stages(std::ostringstream& o) const;

@@ -254,6 +254,12 @@ StepPlan plan_step(const Model& model, const Analysis& a) {
   p.stages = a.velocity_dependent_forces || baumgarte || !a.specialize.single_stage ? 2 : 1;
   p.position_stage = pcst && !a.constraints.empty();
   p.free_rotation = pcst;
+  if (p.scheme == mbrt::Scheme::staggered_tree) {
+    // The recursion holds the gyroscopic terms; only dampers make a second
+    // pass over the end-of-step rates pay.
+    p.stages = 1;
+    for (const Force& f : model.forces) p.stages = f.damping != 0.0 ? 2 : p.stages;
+  }
   return p;
 }
 
@@ -411,6 +417,14 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   }
   if (model.solver.scheme == mbrt::Scheme::ali3p) a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
   if (model.solver.scheme == mbrt::Scheme::staggered_nps) a.tree = plan_tree(model, a.constraints);
+  if (model.solver.scheme == mbrt::Scheme::staggered_tree) {
+    a.tree_frames = plan_tree_frames(model, a.constraints);
+    if (!a.tree_frames.refusal.empty()) {
+      throw ModelError({model.file, 0, 0}, "solver.scheme",
+                       "staggered-tree needs bodies hanging from ground by revolute and prismatic joints: " +
+                           a.tree_frames.refusal + " (use staggered-pcst or staggered-nps)");
+    }
+  }
 
   a.step = plan_step(model, a);
   a.planar = plan_planar(model, a);

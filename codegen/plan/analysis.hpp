@@ -12,6 +12,7 @@
 
 #include "model.hpp"
 #include "specializations.hpp"
+#include "tree_frames.hpp"
 #include "tree_plan.hpp"
 
 namespace mbrt::codegen {
@@ -130,6 +131,7 @@ struct Analysis {
   double baumgarte_beta = 0.0;             // baumgarte, 1/s
   Ali3pPlan ali3p;                         // ali3p only
   TreePlan tree;                           // staggered-nps only
+  TreeFrames tree_frames;                  // staggered-tree only
   PlanarPlan planar;
   Specializations specialize;              // which ones the emitter may make
   std::vector<Skipped> skipped;            // the ones that applied, for the source's comment and reports

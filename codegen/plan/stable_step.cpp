@@ -22,7 +22,8 @@ namespace {
 // ali3p stays finite but dissipates beyond about 0.3.
 double rotation_per_step(mbrt::Scheme scheme) {
   switch (scheme) {
-    case mbrt::Scheme::staggered_pcst: return 0.7;
+    case mbrt::Scheme::staggered_pcst:
+    case mbrt::Scheme::staggered_tree: return 0.7;
     case mbrt::Scheme::ali3p: return 0.3;
     case mbrt::Scheme::staggered_nps:
     case mbrt::Scheme::blajer:

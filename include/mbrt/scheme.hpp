@@ -13,11 +13,12 @@ enum class Scheme {
   ali3p,           // docs/ali3p.md
   blajer,          // docs/schemes.md
   baumgarte,       // docs/schemes.md
+  staggered_tree,  // docs/staggered-tree.md
 };
 
 // The names the model file and the command line use, one per Scheme in order.
-inline constexpr std::array<std::string_view, 5> kSchemeNames{"staggered-pcst", "staggered-nps", "ali3p", "blajer",
-                                                              "baumgarte"};
+inline constexpr std::array<std::string_view, 6> kSchemeNames{"staggered-pcst", "staggered-nps", "ali3p",
+                                                              "blajer",         "baumgarte",     "staggered-tree"};
 
 inline constexpr std::string_view scheme_name(Scheme s) noexcept { return kSchemeNames[static_cast<int>(s)]; }
 

@@ -1,0 +1,232 @@
+// staggered-tree (docs/staggered-tree.md): the articulated-body recursion
+// (Featherstone 2008, "Rigid Body Dynamics Algorithms", table 7.1) in joint
+// coordinates, run here on symbolic values so that the generated code keeps
+// only the operations this model's numbers need.
+#include <string>
+#include <vector>
+
+#include "emitter.hpp"
+#include "spatial_expr.hpp"
+#include "straight_line.hpp"
+
+namespace mbrt::codegen {
+
+using namespace spatial;
+
+namespace {
+
+// The motion subspace of a one-dof joint along the frame's z axis: index 2
+// (turn) or 5 (slide) of [w; v].
+int axis_index(const TreeFrame& f) { return f.revolute ? 2 : 5; }
+
+Motion along_axis(const TreeFrame& f, const Expr& x) {
+  Motion m{V3{0.0, 0.0, 0.0}, V3{0.0, 0.0, 0.0}};
+  (f.revolute ? m.w : m.v)[2] = x;
+  return m;
+}
+
+// The parent-to-child transform of a frame: rotate by Ex, then by Rz(phi)^T,
+// with the child's origin at r (parent axes).
+struct Transform {
+  M3 rz_t;  // Rz(phi)^T
+  M3 ex;
+  V3 r;
+};
+
+Transform transform_of(const TreeFrame& f, const std::string& joint_trig, const Expr& q) {
+  Transform x;
+  x.ex = constant(f.Ex);
+  x.r = constant(f.r);
+  if (f.revolute) {
+    StraightLine& line = StraightLine::current();
+    const Expr ch = line.input(joint_trig + ".c"), sh = line.input(joint_trig + ".s");
+    const Expr c = ch * ch - sh * sh, s = 2.0 * (sh * ch);  // cos(phi), sin(phi) from the half angle
+    x.rz_t = {V3{c, s, 0.0}, V3{-s, c, 0.0}, V3{0.0, 0.0, 1.0}};
+  } else {
+    x.rz_t = constant(Eigen::Matrix3d(Eigen::Matrix3d::Identity()));
+    x.r = x.r + q * column(transpose(x.ex), 2);  // the slide along the child's z, in parent axes
+  }
+  return x;
+}
+
+Motion to_child(const Transform& x, const Motion& m) {
+  const V3 v = m.v - cross(x.r, m.w);
+  return {times(x.rz_t, times(x.ex, m.w)), times(x.rz_t, times(x.ex, v))};
+}
+
+Wrench to_parent(const Transform& x, const Wrench& f) {
+  const V3 n = transpose_times(x.ex, transpose_times(x.rz_t, f.n));
+  const V3 g = transpose_times(x.ex, transpose_times(x.rz_t, f.f));
+  return {n + cross(x.r, g), g};
+}
+
+Inertia to_parent(const Transform& x, const Inertia& I) { return to_origin(x.r, to_old_axes(x.ex, to_old_axes(x.rz_t, I))); }
+
+}  // namespace
+
+bool Emitter::tree_scheme() const { return scheme_kind() == Scheme::staggered_tree; }
+
+bool Emitter::tree_external_loads() const { return !m_.forces.empty() || !m_.inputs.empty(); }
+
+void Emitter::tree_types(std::ostringstream& o) const {
+  o << "inline constexpr int kDofs = " << a_.tree_frames.frames.size() << ";  // joint coordinates, in kBodyInfo order\n"
+    << "using Dofs = std::array<double, kDofs>;\n"
+    << "// cos and sin of half of each revolute joint's angle from its frame's x axis.\n"
+    << "struct HalfAngle {\n  double c, s;\n};\n"
+    << "using HalfAngles = std::array<HalfAngle, kDofs>;\n\n";
+}
+
+void Emitter::tree_kernels(std::ostringstream& o) const {
+  const std::vector<TreeFrame>& frames = a_.tree_frames.frames;
+  const size_t n = frames.size();
+  const auto dof = [&](size_t k) { return std::to_string(frames[k].body); };
+
+  o << "// (q) => (ha): the half angles every kernel below turns frames by.\n"
+    << "static void half_angles([[maybe_unused]] const Dofs& q, [[maybe_unused]] HalfAngles& ha) noexcept {\n";
+  for (size_t k = 0; k < n; ++k) {
+    if (!frames[k].revolute) continue;
+    const std::string angle = frames[k].theta0 == 0.0 ? "q[" + dof(k) + "]" : "(q[" + dof(k) + "] + " + num(frames[k].theta0) + ")";
+    o << "  ha[" << dof(k) << "] = {std::cos(0.5 * " << angle << "), std::sin(0.5 * " << angle << ")};  // "
+      << m_.bodies[static_cast<size_t>(frames[k].body)].name << "\n";
+  }
+  o << "}\n\n";
+
+  // The recursion, gravity entering as the ground's acceleration -g.
+  {
+    StraightLine line;
+    std::vector<Transform> x(n);
+    std::vector<Motion> v(n), c(n), a(n);
+    std::vector<Inertia> ia(n);
+    std::vector<Wrench> pa(n);
+    std::vector<V3> u_col(n);
+    std::vector<Expr> d(n), u(n), qd(n), inv_d(n);
+    std::vector<std::array<Expr, 6>> w(n);
+    for (size_t k = 0; k < n; ++k) {
+      const TreeFrame& f = frames[k];
+      const Expr q = line.input("q[" + dof(k) + "]");
+      qd[k] = line.input("qd[" + dof(k) + "]");
+      x[k] = transform_of(f, "ha[" + dof(k) + "]", q);
+      const Motion s_qd = along_axis(f, qd[k]);
+      if (f.parent == kGround) {
+        v[k] = s_qd;
+        c[k] = {V3{0.0, 0.0, 0.0}, V3{0.0, 0.0, 0.0}};
+      } else {
+        v[k] = to_child(x[k], v[static_cast<size_t>(f.parent)]) + s_qd;
+        c[k] = cross(v[k], s_qd);
+      }
+      ia[k] = rigid_inertia(f.mass, f.com, f.inertia);
+      pa[k] = cross(v[k], times(ia[k], v[k]));
+      if (tree_external_loads()) {
+        // The applied wrench at the COM: force in world axes, torque in body axes.
+        const std::string b = std::to_string(f.body);
+        const M3 axes = constant(f.body_axes);
+        V3 force_world, torque_body;
+        M3 rot;
+        for (int i = 0; i < 3; ++i) {
+          force_world[static_cast<size_t>(i)] = line.input("l.w[" + b + "].f[" + std::to_string(i) + "]");
+          torque_body[static_cast<size_t>(i)] = line.input("l.w[" + b + "].tau[" + std::to_string(i) + "]");
+          for (int j = 0; j < 3; ++j) rot[static_cast<size_t>(i)][static_cast<size_t>(j)] = line.input("k.pose[" + b + "].R(" + std::to_string(i) + ", " + std::to_string(j) + ")");
+        }
+        const V3 force = times(axes, transpose_times(rot, force_world));
+        const V3 torque = times(axes, torque_body);
+        pa[k] = pa[k] - Wrench{torque + cross(constant(f.com), force), force};
+      }
+    }
+    for (size_t k = n; k-- > 0;) {
+      const TreeFrame& f = frames[k];
+      const int i = axis_index(f);
+      std::array<Expr, 6> col;
+      for (int r = 0; r < 6; ++r) col[static_cast<size_t>(r)] = ia[k].at(r, i);
+      d[k] = col[static_cast<size_t>(i)];
+      inv_d[k] = 1.0 / d[k];
+      for (int r = 0; r < 6; ++r) w[k][static_cast<size_t>(r)] = r == i ? Expr(1.0) : col[static_cast<size_t>(r)] * inv_d[k];
+      u[k] = -component(pa[k], i);
+      if (f.parent == kGround) continue;
+      // Articulated inertia and bias force the parent sees through the joint.
+      Inertia reduced = ia[k];
+      for (int r = 0; r < 6; ++r)
+        for (int s = r; s < 6; ++s)
+          reduced.set(r, s, r == i || s == i ? Expr(0.0) : ia[k].at(r, s) - w[k][static_cast<size_t>(r)] * col[static_cast<size_t>(s)]);
+      Wrench bias = pa[k] + times(reduced, c[k]);
+      bias.n = bias.n + u[k] * V3{w[k][0], w[k][1], w[k][2]};
+      bias.f = bias.f + u[k] * V3{w[k][3], w[k][4], w[k][5]};
+      if (f.revolute) bias.n[2] = 0.0;
+      else bias.f[2] = 0.0;
+      const size_t p = static_cast<size_t>(f.parent);
+      ia[p] = ia[p] + to_parent(x[k], reduced);
+      pa[p] = pa[p] + to_parent(x[k], bias);
+    }
+    const Eigen::Vector3d g = m_.gravity.value_or(Eigen::Vector3d::Zero());
+    const Motion ground{V3{0.0, 0.0, 0.0}, constant(Eigen::Vector3d(-g))};
+    for (size_t k = 0; k < n; ++k) {
+      const TreeFrame& f = frames[k];
+      const Motion from = f.parent == kGround ? ground : a[static_cast<size_t>(f.parent)];
+      Motion ap = to_child(x[k], from) + c[k];
+      Expr wa = 0.0;
+      for (int r = 0; r < 6; ++r) wa = wa + w[k][static_cast<size_t>(r)] * component(ap, r);
+      const Expr qdd = u[k] * inv_d[k] - wa;
+      a[k] = ap + along_axis(f, qdd);
+      line.output("qdd[" + dof(k) + "]", qdd);
+    }
+    o << "// (q, qd" << (tree_external_loads() ? ", k, l" : "")
+      << ") => (qdd): the articulated-body recursion, this model's nonzero terms only.\n"
+      << "static void joint_accelerations([[maybe_unused]] const Dofs& q, const HalfAngles& ha, const Dofs& qd, "
+      << "[[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {\n"
+      << line.code("  ") << "}\n\n";
+  }
+
+  // Body states from the joint coordinates.
+  {
+    StraightLine line;
+    std::vector<M3> rot(n);       // frame to world
+    std::vector<V3> origin(n);    // world
+    std::vector<std::array<Expr, 4>> turn(n);  // Euler parameters, frame to world
+    std::vector<Motion> v(n);
+    const auto quat_product = [](const std::array<Expr, 4>& a, const std::array<Expr, 4>& b) {
+      return std::array<Expr, 4>{a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+                                 a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+                                 a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+                                 a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+    };
+    const auto constant4 = [](const Eigen::Vector4d& e) { return std::array<Expr, 4>{e[0], e[1], e[2], e[3]}; };
+    for (size_t k = 0; k < n; ++k) {
+      const TreeFrame& f = frames[k];
+      const Expr q = line.input("q[" + dof(k) + "]");
+      const Expr qd = line.input("qd[" + dof(k) + "]");
+      const Transform x = transform_of(f, "ha[" + dof(k) + "]", q);
+      const bool root = f.parent == kGround;
+      const M3 parent_rot = root ? constant(Eigen::Matrix3d(Eigen::Matrix3d::Identity())) : rot[static_cast<size_t>(f.parent)];
+      const V3 parent_origin = root ? V3{0.0, 0.0, 0.0} : origin[static_cast<size_t>(f.parent)];
+      const std::array<Expr, 4> parent_turn = root ? std::array<Expr, 4>{1.0, 0.0, 0.0, 0.0} : turn[static_cast<size_t>(f.parent)];
+      // R = R_parent E^T, E = Rz(phi)^T Ex.
+      rot[k] = product(parent_rot, transpose(product(x.rz_t, x.ex)));
+      origin[k] = parent_origin + times(parent_rot, x.r);
+      std::array<Expr, 4> t = quat_product(parent_turn, constant4(f.turn));
+      if (f.revolute) {
+        const Expr ch = line.input("ha[" + dof(k) + "].c"), sh = line.input("ha[" + dof(k) + "].s");
+        t = quat_product(t, {ch, 0.0, 0.0, sh});
+      }
+      turn[k] = t;
+      const Motion s_qd = along_axis(f, qd);
+      v[k] = root ? s_qd : to_child(x, v[static_cast<size_t>(f.parent)]) + s_qd;
+      const std::array<Expr, 4> p = quat_product(t, constant4(f.body_turn));
+      const V3 com = constant(f.com);
+      const V3 r = origin[k] + times(rot[k], com);
+      const V3 vel = times(rot[k], v[k].v + cross(v[k].w, com));
+      const V3 w_body = transpose_times(constant(f.body_axes), v[k].w);
+      const std::string st = "s.rigid[" + std::to_string(a_.bodies[static_cast<size_t>(f.body)].slot) + "]";
+      for (int i = 0; i < 3; ++i) {
+        const std::string idx = "[" + std::to_string(i) + "]";
+        line.output(st + ".r" + idx, r[static_cast<size_t>(i)]);
+        line.output(st + ".v" + idx, vel[static_cast<size_t>(i)]);
+        line.output(st + ".w" + idx, w_body[static_cast<size_t>(i)]);
+      }
+      for (int i = 0; i < 4; ++i) line.output(st + ".p[" + std::to_string(i) + "]", p[static_cast<size_t>(i)]);
+    }
+    o << "// (q, qd) => (s.rigid): where every body is and how it moves.\n"
+      << "static void body_states([[maybe_unused]] const Dofs& q, const HalfAngles& ha, const Dofs& qd, State& s) noexcept {\n"
+      << line.code("  ") << "}\n\n";
+  }
+}
+
+}  // namespace mbrt::codegen

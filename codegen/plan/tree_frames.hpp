@@ -1,0 +1,50 @@
+// The frames of the staggered-tree step (docs/staggered-tree.md): one joint
+// frame per body, with z along its joint's axis and, where the tree allows,
+// x along the common normal to its first child's axis (the modified
+// Denavit-Hartenberg convention, Craig 1986, "Introduction to Robotics",
+// section 3.4), so the transforms between frames are mostly zeros and ones
+// that the generated recursion never multiplies.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "model.hpp"
+
+namespace mbrt::codegen {
+
+struct ConstraintBlock;
+
+struct TreeFrame {
+  int body;        // Model::bodies index; the joint coordinate's index is this frame's
+  int parent;      // TreeFrames::frames index, or kGround
+  int joint;       // Model::joints index
+  bool revolute;   // else prismatic
+  // Parent-frame to this frame's coordinates at angle phi = q + theta0:
+  // E(q) = Rz(phi)^T Ex with Ex a turn about x by alpha (Craig's form) or,
+  // where the parent's x axis could not be chosen for this body, Ex = E(0).
+  double theta0 = 0.0;
+  Eigen::Matrix3d Ex = Eigen::Matrix3d::Identity();
+  Eigen::Vector4d turn = {1, 0, 0, 0};  // Euler parameters of Ex^T
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();  // this origin from the parent's, parent axes (prismatic: at q = 0)
+  // The body in this frame: mass, COM, inertia about the COM.
+  double mass = 0.0;
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d body_axes = Eigen::Matrix3d::Identity();  // body to frame axes
+  Eigen::Vector4d body_turn = {1, 0, 0, 0};                  // Euler parameters of body_axes
+  double rate0 = 0.0;  // joint rate at t = 0
+};
+
+struct TreeFrames {
+  std::vector<TreeFrame> frames;  // parents first
+  std::string refusal;            // why the model is no tree of one-dof joints ("" when it is)
+};
+
+// Frames for a model whose bodies hang from ground by revolute and prismatic
+// joints alone; otherwise frames is empty and refusal says why.
+TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBlock>& blocks);
+
+}  // namespace mbrt::codegen
