@@ -186,3 +186,39 @@ TEST_CASE("staggered-nps refuses more cut rows than it solves densely, naming st
     CHECK(std::string(e.what()).find("at most 30; this model has 33 (use staggered-pcst)") != std::string::npos);
   }
 }
+
+TEST_CASE("staggered-tree takes trees of revolute and prismatic joints; armature needs it") {
+  const std::string bodies =
+      "name: t\nbodies:\n  - {name: a, mass: 1, inertia: [1, 1, 1], position: [1, 0, 0]}\n"
+      "  - {name: b, mass: 1, inertia: [1, 1, 1], position: [2, 0, 0]}\n";
+  const std::string pin_a = "  - {name: pa, type: revolute, body1: ground, body2: a, point: [0, 0, 0], axis: [0, 0, 1]}\n";
+  CHECK_THROWS_WITH_AS(
+      analyse(parse_model(bodies + "joints:\n" + pin_a +
+                              "  - {name: ball, type: spherical, body1: a, body2: b, point: [1.5, 0, 0]}\n"
+                              "solver: {scheme: staggered-tree}\n",
+                          "t.yaml")),
+      doctest::Contains("joint ball is spherical; the tree step takes revolute and prismatic joints"), ModelError);
+  CHECK_THROWS_WITH_AS(
+      analyse(parse_model(bodies + "joints:\n" + pin_a +
+                              "  - {name: pb, type: revolute, body1: a, body2: b, point: [1.5, 0, 0], axis: [0, 0, 1]}\n"
+                              "  - {name: loop, type: revolute, body1: ground, body2: b, point: [2, 0, 0], axis: [0, 0, 1]}\n"
+                              "solver: {scheme: staggered-tree}\n",
+                          "t.yaml")),
+      doctest::Contains("a joint closes a loop"), ModelError);
+  CHECK_THROWS_WITH_AS(
+      analyse(parse_model(bodies + "joints:\n" + pin_a +
+                              "  - {name: pb, type: revolute, body1: a, body2: b, point: [1.5, 0, 0], axis: [0, 0, 1], "
+                              "armature: 0.1}\n",
+                          "t.yaml")),
+      doctest::Contains("joints.pb.armature: armature needs solver.scheme staggered-tree"), ModelError);
+  const Analysis a = analyse(parse_model(bodies + "joints:\n" + pin_a +
+                                             "  - {name: pb, type: revolute, body1: a, body2: b, point: [1.5, 0, 0], "
+                                             "axis: [0, 1, 0], armature: 0.1}\nsolver: {scheme: staggered-tree}\n",
+                                         "t.yaml"));
+  REQUIRE(a.tree_frames.frames.size() == 2);
+  // Craig's convention: a's frame has x along z x y, so b's frame is a's
+  // turned about x by a right angle, at 0.5 m along a's x.
+  CHECK(a.tree_frames.frames[1].armature == 0.1);
+  CHECK(std::abs(a.tree_frames.frames[1].r.norm() - 1.5) < 1e-12);
+  CHECK(a.tree_frames.frames[1].Ex.cwiseAbs().sum() == 3.0);
+}

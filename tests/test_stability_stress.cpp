@@ -11,10 +11,13 @@
 #include <string>
 
 #include "arm_6.hpp"
+#include "arm_6_tree.hpp"
 #include "arm_7.hpp"
+#include "arm_7_tree.hpp"
 #include "model.hpp"
 #include "spatial_chain_16.hpp"
 #include "spatial_chain_16_revolute.hpp"
+#include "spatial_chain_16_revolute_tree.hpp"
 #include "spinner.hpp"
 #include "spinner_2ms.hpp"
 
@@ -80,4 +83,17 @@ TEST_CASE("a light body spinning at 300 rad/s about its intermediate axis on a j
   const Run at_2ms = STRESS_RUN(spinner_2ms, "spinner.yaml", 10.0);  // 0.6 rad per step
   CHECK(at_2ms.finite);
   CHECK(at_2ms.drift < 5e-2);
+}
+
+// staggered-tree integrates joint coordinates with the same kick-drift-kick,
+// whose mass matrix M(q) makes it lose the symplectic property the
+// absolute-coordinate schemes have: its energy wanders more (measured over
+// 20 s at 1 kHz: arm_7 2.9 %, the revolute chain 6.5 %, against 0.4 % and
+// 0.08 % for staggered-pcst; docs/staggered-tree.md), though it stays finite.
+TEST_CASE("staggered-tree keeps the arms and the revolute chain finite at 1 kHz, energy within 5 % over 10 s") {
+  for (const Run& r : {STRESS_RUN(arm_6_tree, "arm_6.yaml", 10.0), STRESS_RUN(arm_7_tree, "arm_7.yaml", 10.0),
+                       STRESS_RUN(spatial_chain_16_revolute_tree, "spatial_chain_16_revolute.yaml", 10.0)}) {
+    CHECK(r.finite);
+    CHECK(r.drift < 5e-2);
+  }
 }

@@ -670,6 +670,11 @@ void Emitter::diagnostics(std::ostringstream& o) const {
       o << "  e.potential -= " << mass_of(static_cast<int>(i)) << ".m * kGravity.dot(k.pose[" << i << "].r);\n";
     }
   }
+  for (const TreeFrame& f : a_.tree_frames.frames) {
+    if (f.armature == 0.0) continue;
+    o << "  e.kinetic += " << num(0.5 * f.armature) << " * s.qd[" << f.body << "] * s.qd[" << f.body << "];  // armature of "
+      << m_.joints[static_cast<size_t>(f.joint)].name << "\n";
+  }
   o << R"(  return e;
 }
 

@@ -137,21 +137,26 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       const int i = axis_index(f);
       std::array<Expr, 6> col;
       for (int r = 0; r < 6; ++r) col[static_cast<size_t>(r)] = ia[k].at(r, i);
-      d[k] = col[static_cast<size_t>(i)];
+      // The armature adds to the joint's own inertia only (Featherstone
+      // section 7.3: D = S^T IA S plus the rotor's); without one, W's own
+      // entry and the reduced inertia's row and column of the joint are
+      // exactly 1 and 0, and are set so.
+      const bool plain = f.armature == 0.0;
+      d[k] = col[static_cast<size_t>(i)] + f.armature;
       inv_d[k] = 1.0 / d[k];
-      for (int r = 0; r < 6; ++r) w[k][static_cast<size_t>(r)] = r == i ? Expr(1.0) : col[static_cast<size_t>(r)] * inv_d[k];
+      for (int r = 0; r < 6; ++r) w[k][static_cast<size_t>(r)] = r == i && plain ? Expr(1.0) : col[static_cast<size_t>(r)] * inv_d[k];
       u[k] = -component(pa[k], i);
       if (f.parent == kGround) continue;
       // Articulated inertia and bias force the parent sees through the joint.
       Inertia reduced = ia[k];
       for (int r = 0; r < 6; ++r)
         for (int s = r; s < 6; ++s)
-          reduced.set(r, s, r == i || s == i ? Expr(0.0) : ia[k].at(r, s) - w[k][static_cast<size_t>(r)] * col[static_cast<size_t>(s)]);
+          reduced.set(r, s, plain && (r == i || s == i) ? Expr(0.0) : ia[k].at(r, s) - w[k][static_cast<size_t>(r)] * col[static_cast<size_t>(s)]);
       Wrench bias = pa[k] + times(reduced, c[k]);
       bias.n = bias.n + u[k] * V3{w[k][0], w[k][1], w[k][2]};
       bias.f = bias.f + u[k] * V3{w[k][3], w[k][4], w[k][5]};
-      if (f.revolute) bias.n[2] = 0.0;
-      else bias.f[2] = 0.0;
+      if (plain && f.revolute) bias.n[2] = 0.0;
+      if (plain && !f.revolute) bias.f[2] = 0.0;
       const size_t p = static_cast<size_t>(f.parent);
       ia[p] = ia[p] + to_parent(x[k], reduced);
       pa[p] = pa[p] + to_parent(x[k], bias);
@@ -170,7 +175,8 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
     }
     o << "// (q, qd" << (tree_external_loads() ? ", k, l" : "")
       << ") => (qdd): the articulated-body recursion, this model's nonzero terms only.\n"
-      << "static void joint_accelerations([[maybe_unused]] const Dofs& q, const HalfAngles& ha, const Dofs& qd, "
+      << "static void joint_accelerations([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, "
+      << "[[maybe_unused]] const Dofs& qd, "
       << "[[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {\n"
       << line.code("  ") << "}\n\n";
   }
@@ -224,7 +230,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       for (int i = 0; i < 4; ++i) line.output(st + ".p[" + std::to_string(i) + "]", p[static_cast<size_t>(i)]);
     }
     o << "// (q, qd) => (s.rigid): where every body is and how it moves.\n"
-      << "static void body_states([[maybe_unused]] const Dofs& q, const HalfAngles& ha, const Dofs& qd, State& s) noexcept {\n"
+      << "static void body_states([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, [[maybe_unused]] const Dofs& qd, State& s) noexcept {\n"
       << line.code("  ") << "}\n\n";
   }
 }

@@ -479,6 +479,7 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
     case JointType::planar:
       j.point = read_vector3(s.get("point"));
       j.axis = read_axis(s.get("axis"));
+      if (auto x = s.find("armature")) j.armature = read_non_negative(*x);
       break;
     case JointType::screw: {
       j.point = read_vector3(s.get("point"));

@@ -417,8 +417,16 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   }
   if (model.solver.scheme == mbrt::Scheme::ali3p) a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
   if (model.solver.scheme == mbrt::Scheme::staggered_nps) a.tree = plan_tree(model, a.constraints);
+  for (const Joint& j : model.joints) {
+    if (j.armature > 0.0 && model.solver.scheme != mbrt::Scheme::staggered_tree) {
+      throw ModelError(j.where, "joints." + j.name + ".armature",
+                       "armature needs solver.scheme staggered-tree (the scheme is " +
+                           std::string(mbrt::scheme_name(model.solver.scheme)) +
+                           "): in absolute coordinates a rotor's inertia would couple the two bodies' mass blocks");
+    }
+  }
   if (model.solver.scheme == mbrt::Scheme::staggered_tree) {
-    a.tree_frames = plan_tree_frames(model, a.constraints);
+    a.tree_frames = plan_tree_frames(model);
     if (!a.tree_frames.refusal.empty()) {
       throw ModelError({model.file, 0, 0}, "solver.scheme",
                        "staggered-tree needs bodies hanging from ground by revolute and prismatic joints: " +

@@ -52,7 +52,7 @@ struct WorldFrame {
 
 }  // namespace
 
-TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBlock>& blocks) {
+TreeFrames plan_tree_frames(const Model& model) {
   TreeFrames out;
   const auto refuse = [&](const std::string& why) {
     out.frames.clear();
@@ -69,8 +69,8 @@ TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBloc
                     "; the tree step takes revolute and prismatic joints");
     }
   }
-  const TreePlan tree = plan_tree(model, blocks);
-  if (!tree.cut_blocks.empty()) return refuse("joint " + model.joints[static_cast<size_t>(tree.cut_blocks.front())].name + " closes a loop");
+  if (model.joints.size() > model.bodies.size()) return refuse("a joint closes a loop");
+  const TreePlan tree = plan_tree(model, {});
   std::vector<int> frame_of(model.bodies.size(), -1);
   std::vector<int> first_child(tree.order.size(), -1);
   for (size_t k = 0; k < tree.order.size(); ++k) {
@@ -163,6 +163,7 @@ TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBloc
       vp = pb.velocity;
       rp = pb.position;
     }
+    f.armature = j.armature;
     f.rate0 = f.revolute ? axis.dot(w - wp) : axis.dot(body.velocity - vp - wp.cross(body.position - rp));
     out.frames.push_back(f);
   }

@@ -15,8 +15,6 @@
 
 namespace mbrt::codegen {
 
-struct ConstraintBlock;
-
 struct TreeFrame {
   int body;        // Model::bodies index; the joint coordinate's index is this frame's
   int parent;      // TreeFrames::frames index, or kGround
@@ -36,6 +34,7 @@ struct TreeFrame {
   Eigen::Matrix3d body_axes = Eigen::Matrix3d::Identity();  // body to frame axes
   Eigen::Vector4d body_turn = {1, 0, 0, 0};                  // Euler parameters of body_axes
   double rate0 = 0.0;  // joint rate at t = 0
+  double armature = 0.0;
 };
 
 struct TreeFrames {
@@ -45,6 +44,7 @@ struct TreeFrames {
 
 // Frames for a model whose bodies hang from ground by revolute and prismatic
 // joints alone; otherwise frames is empty and refusal says why.
-TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBlock>& blocks);
+TreeFrames plan_tree_frames(const Model& model);
+
 
 }  // namespace mbrt::codegen
