@@ -23,6 +23,7 @@ std::string Emitter::header() const {
     << m_.solver.euler_updates << ". Generated code: regenerate, do not edit.\n"
     << "#pragma once\n\n#include <array>\n#include <cstddef>\n\n#include <mbrt/model_api.hpp>\n"
     << (scheme_kind() == Scheme::staggered_nps ? "#include <mbrt/natural_partitioning.hpp>\n" : "")
+    << (tree_scheme() ? "#include <mbrt/sin_cos.hpp>\n" : "")
     << "#include <mbrt/runtime.hpp>\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\n"
     << "inline constexpr const char* kName = \"" << m_.name << "\";\n"
@@ -213,10 +214,10 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
   o << "// What step() works on. The caller owns it, so a real-time loop can keep it\n"
     << "// in memory locked and touched before the loop starts; nothing in it\n"
     << "// carries over from one step to the next.\n"
-    << "struct Workspace {\n"
-    << "  State last_good;  // the state at t, restored when a step fails\n";
+    << "struct Workspace {\n";
   if (tree_scheme()) {
-    o << "  HalfAngles half_angles;  // of s.q\n"
+    o << "  double t0;\n  Dofs q0, qd0, qdd0;  // the joint coordinates at t, restored when a step fails\n"
+      << "  HalfAngles half_angles;  // of s.q\n"
       << "  Dofs rates;              // end-of-step rates, predicted\n"
       << "  detail::Kinematics k;    // where loads other than gravity need the bodies\n"
       << "  detail::Loads l;\n"
@@ -224,7 +225,8 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
       << "inline constexpr std::size_t kWorkspaceBytes = sizeof(Workspace);\n\n";
     return;
   }
-  o << "  " << ns << "Kinematics k;\n"
+  o << "  State last_good;  // the state at t, restored when a step fails\n"
+    << "  " << ns << "Kinematics k;\n"
     << "  " << ns << "ConstraintSystem c;  // at t + h\n";
   if (rattle()) {
     o << "  " << ns << "ConstraintSystem c0;  // at t: the position stage's force directions\n"

@@ -25,18 +25,21 @@ Motion along_axis(const TreeFrame& f, const Expr& x) {
   return m;
 }
 
-// The parent-to-child transform of a frame: rotate by Ex, then by Rz(phi)^T,
-// with the child's origin at r (parent axes).
+// The parent-to-child transform of a frame: shift the origin by r (parent
+// axes), rotate by Ex, shift by d along z, rotate by Rz(phi)^T.
 struct Transform {
   M3 rz_t;  // Rz(phi)^T
   M3 ex;
   V3 r;
+  V3 d;  // (0, 0, d), or the slide (prismatic)
+  V3 origin() const { return r + transpose_times(ex, d); }  // the child's origin, parent axes
 };
 
 Transform transform_of(const TreeFrame& f, const std::string& joint_trig, const Expr& q) {
   Transform x;
   x.ex = constant(f.Ex);
   x.r = constant(f.r);
+  x.d = V3{0.0, 0.0, f.d};
   if (f.revolute) {
     StraightLine& line = StraightLine::current();
     const Expr ch = line.input(joint_trig + ".c"), sh = line.input(joint_trig + ".s");
@@ -44,23 +47,27 @@ Transform transform_of(const TreeFrame& f, const std::string& joint_trig, const 
     x.rz_t = {V3{c, s, 0.0}, V3{-s, c, 0.0}, V3{0.0, 0.0, 1.0}};
   } else {
     x.rz_t = constant(Eigen::Matrix3d(Eigen::Matrix3d::Identity()));
-    x.r = x.r + q * column(transpose(x.ex), 2);  // the slide along the child's z, in parent axes
+    x.d = V3{0.0, 0.0, f.d + q};  // the slide along the child's z
   }
   return x;
 }
 
 Motion to_child(const Transform& x, const Motion& m) {
-  const V3 v = m.v - cross(x.r, m.w);
-  return {times(x.rz_t, times(x.ex, m.w)), times(x.rz_t, times(x.ex, v))};
+  const V3 w = times(x.ex, m.w);
+  const V3 v = times(x.ex, m.v - cross(x.r, m.w)) - cross(x.d, w);
+  return {times(x.rz_t, w), times(x.rz_t, v)};
 }
 
 Wrench to_parent(const Transform& x, const Wrench& f) {
-  const V3 n = transpose_times(x.ex, transpose_times(x.rz_t, f.n));
-  const V3 g = transpose_times(x.ex, transpose_times(x.rz_t, f.f));
-  return {n + cross(x.r, g), g};
+  const V3 n1 = transpose_times(x.rz_t, f.n), f1 = transpose_times(x.rz_t, f.f);
+  const V3 n2 = n1 + cross(x.d, f1);
+  const V3 g = transpose_times(x.ex, f1);
+  return {transpose_times(x.ex, n2) + cross(x.r, g), g};
 }
 
-Inertia to_parent(const Transform& x, const Inertia& I) { return to_origin(x.r, to_old_axes(x.ex, to_old_axes(x.rz_t, I))); }
+Inertia to_parent(const Transform& x, const Inertia& I) {
+  return to_origin(x.r, to_old_axes(x.ex, to_origin(x.d, to_old_axes(x.rz_t, I))));
+}
 
 }  // namespace
 
@@ -72,8 +79,7 @@ void Emitter::tree_types(std::ostringstream& o) const {
   o << "inline constexpr int kDofs = " << a_.tree_frames.frames.size() << ";  // joint coordinates, in kBodyInfo order\n"
     << "using Dofs = std::array<double, kDofs>;\n"
     << "// cos and sin of half of each revolute joint's angle from its frame's x axis.\n"
-    << "struct HalfAngle {\n  double c, s;\n};\n"
-    << "using HalfAngles = std::array<HalfAngle, kDofs>;\n\n";
+    << "using HalfAngles = std::array<mbrt::SinCos, kDofs>;\n\n";
 }
 
 void Emitter::tree_kernels(std::ostringstream& o) const {
@@ -86,7 +92,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
   for (size_t k = 0; k < n; ++k) {
     if (!frames[k].revolute) continue;
     const std::string angle = frames[k].theta0 == 0.0 ? "q[" + dof(k) + "]" : "(q[" + dof(k) + "] + " + num(frames[k].theta0) + ")";
-    o << "  ha[" << dof(k) << "] = {std::cos(0.5 * " << angle << "), std::sin(0.5 * " << angle << ")};  // "
+    o << "  ha[" << dof(k) << "] = mbrt::sin_cos(0.5 * " << angle << ");  // "
       << m_.bodies[static_cast<size_t>(frames[k].body)].name << "\n";
   }
   o << "}\n\n";
@@ -206,7 +212,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       const std::array<Expr, 4> parent_turn = root ? std::array<Expr, 4>{1.0, 0.0, 0.0, 0.0} : turn[static_cast<size_t>(f.parent)];
       // R = R_parent E^T, E = Rz(phi)^T Ex.
       rot[k] = product(parent_rot, transpose(product(x.rz_t, x.ex)));
-      origin[k] = parent_origin + times(parent_rot, x.r);
+      origin[k] = parent_origin + times(parent_rot, x.origin());
       std::array<Expr, 4> t = quat_product(parent_turn, constant4(f.turn));
       if (f.revolute) {
         const Expr ch = line.input("ha[" + dof(k) + "].c"), sh = line.input("ha[" + dof(k) + "].s");

@@ -146,6 +146,14 @@ TreeFrames plan_tree_frames(const Model& model) {
     }
     f.turn = euler_parameters(f.Ex.transpose());
     f.r = snapped(Eigen::Vector3d(parent.R.transpose() * (world[k].o - parent.o)));
+    // Two shifts along one axis each cost less than one along a general r.
+    const Eigen::Vector3d z_in_parent = f.Ex.transpose().col(2);
+    const double along_z = f.r.dot(z_in_parent);
+    const Eigen::Vector3d rest = f.r - along_z * z_in_parent;
+    if (std::abs(rest.y()) < 1e-12 && std::abs(rest.z()) < 1e-12 && f.r.cwiseAbs().maxCoeff() > 0.0) {
+      f.d = snap(along_z);
+      f.r = snapped(Eigen::Vector3d(rest.x(), 0.0, 0.0));
+    }
     const Eigen::Matrix3d body_R = mbrt::rotation_matrix(body.orientation);
     f.body_axes = snapped(Eigen::Matrix3d(world[k].R.transpose() * body_R));
     f.body_turn = euler_parameters(f.body_axes);

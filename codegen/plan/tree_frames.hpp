@@ -26,7 +26,10 @@ struct TreeFrame {
   double theta0 = 0.0;
   Eigen::Matrix3d Ex = Eigen::Matrix3d::Identity();
   Eigen::Vector4d turn = {1, 0, 0, 0};  // Euler parameters of Ex^T
-  Eigen::Vector3d r = Eigen::Vector3d::Zero();  // this origin from the parent's, parent axes (prismatic: at q = 0)
+  // This origin from the parent's at q = 0: r (parent axes) plus d along this
+  // frame's z. Craig's form puts all of r on the parent's x axis.
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();
+  double d = 0.0;
   // The body in this frame: mass, COM, inertia about the COM.
   double mass = 0.0;
   Eigen::Vector3d com = Eigen::Vector3d::Zero();

@@ -19,15 +19,18 @@
 
 #include "mbrt/mul_add.hpp"
 #include "mbrt/scheme.hpp"
-#include "mbrt/schemes/state_checks.hpp"
+#include "mbrt/body_state.hpp"
 #include "mbrt/step_status.hpp"
 
 namespace mbrt::schemes {
 
-template <class Dofs>
-bool all_finite(const Dofs& q, const Dofs& qd, const Dofs& qdd) noexcept {
+// The joint coordinates decide everything else; a body's velocity is where
+// finite rates could still overflow.
+template <class State>
+bool tree_state_finite(const State& s) noexcept {
   double sum = 0.0;
-  for (std::size_t i = 0; i < q.size(); ++i) sum += q[i] + qd[i] + qdd[i];
+  for (std::size_t i = 0; i < s.q.size(); ++i) sum += s.q[i] + s.qd[i] + s.qdd[i];
+  for (const RigidState& b : s.rigid) sum += b.v.sum();
   return std::isfinite(sum);
 }
 
@@ -36,7 +39,10 @@ bool all_finite(const Dofs& q, const Dofs& qd, const Dofs& qdd) noexcept {
 template <class M>
 StepStatus tree_step(typename M::State& s, typename M::Workspace& w) noexcept {
   constexpr double h = M::kStep;
-  w.last_good = s;
+  w.t0 = s.t;
+  w.q0 = s.q;
+  w.qd0 = s.qd;
+  w.qdd0 = s.qdd;
   // Explicit stage: half kick and drift of the joint coordinates.
   for (std::size_t i = 0; i < s.q.size(); ++i) {
     s.qd[i] += (0.5 * h) * s.qdd[i];
@@ -57,8 +63,13 @@ StepStatus tree_step(typename M::State& s, typename M::Workspace& w) noexcept {
   }
   for (std::size_t i = 0; i < s.q.size(); ++i) s.qd[i] += (0.5 * h) * s.qdd[i];
   M::body_states(s.q, w.half_angles, s.qd, s);
-  if (!all_finite(s.q, s.qd, s.qdd) || !finite(s)) {
-    s = w.last_good;
+  if (!tree_state_finite(s)) {
+    s.t = w.t0;
+    s.q = w.q0;
+    s.qd = w.qd0;
+    s.qdd = w.qdd0;
+    M::half_angles(s.q, w.half_angles);
+    M::body_states(s.q, w.half_angles, s.qd, s);
     return StepStatus::non_finite;
   }
   return StepStatus::ok;
