@@ -1,0 +1,119 @@
+// staggered-tree's step (include/mbrt/schemes/tree.hpp) on its own, without
+// the generator: a pendulum in its joint angle written by hand as the Model
+// the template takes (a point mass m on a massless rod of length L, pinned
+// at the origin about y, gravity -g z): q'' = -(g / L) sin q.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <mbrt/schemes/tree.hpp>
+#include <mbrt/sin_cos.hpp>
+
+namespace {
+
+constexpr double kLength = 0.8, kG = 9.81;
+
+using Dofs = std::array<double, 1>;
+using HalfAngles = std::array<mbrt::SinCos, 1>;
+
+struct State {
+  double t = 0.0;
+  Dofs q{}, qd{}, qdd{};
+  std::array<mbrt::RigidState, 1> rigid;
+};
+
+struct Kinematics {};
+struct Loads {};
+
+struct Workspace {
+  double t0;
+  Dofs q0, qd0, qdd0;
+  HalfAngles half_angles;
+  Dofs rates;
+  Kinematics k;
+  Loads l;
+};
+
+struct Pendulum {
+  using State = ::State;
+  using Workspace = ::Workspace;
+  using Dofs = ::Dofs;
+  using HalfAngles = ::HalfAngles;
+  static constexpr double kStep = 1e-3;
+  static constexpr int kStages = 1;
+  static constexpr bool kExternalLoads = false;
+
+  static void half_angles(const Dofs& q, HalfAngles& ha) { ha[0] = mbrt::sin_cos(0.5 * q[0]); }
+  static void body_states(const Dofs&, const HalfAngles& ha, const Dofs& qd, State& s) {
+    const double c = ha[0].c * ha[0].c - ha[0].s * ha[0].s, sn = 2.0 * ha[0].s * ha[0].c;
+    s.rigid[0].r = {kLength * sn, 0.0, -kLength * c};
+    s.rigid[0].p = {ha[0].c, 0.0, ha[0].s, 0.0};
+    s.rigid[0].v = {kLength * c * qd[0], 0.0, kLength * sn * qd[0]};
+    s.rigid[0].w = {0.0, qd[0], 0.0};
+  }
+  static void kinematics(const State&, Kinematics&) {}
+  static void tree_loads(const Kinematics&, const State&, Loads&) {}
+  static void joint_accelerations(const Dofs&, const HalfAngles& ha, const Dofs&, const Kinematics&, const Loads&,
+                                  Dofs& qdd) {
+    qdd[0] = -(kG / kLength) * 2.0 * ha[0].s * ha[0].c;
+  }
+};
+
+State start(double angle) {
+  State s;
+  s.q[0] = angle;
+  HalfAngles ha;
+  Pendulum::half_angles(s.q, ha);
+  Pendulum::body_states(s.q, ha, s.qd, s);
+  Pendulum::joint_accelerations(s.q, ha, s.qd, {}, {}, s.qdd);
+  return s;
+}
+
+double energy(const State& s) {  // per unit mass
+  return 0.5 * s.rigid[0].v.squaredNorm() + kG * s.rigid[0].r.z();
+}
+
+}  // namespace
+
+TEST_CASE("the tree template's small-amplitude period is 2 pi sqrt(L / g), energy within (w h)^2 / 2") {
+  State s = start(1e-3);
+  Workspace w;
+  const double omega = std::sqrt(kG / kLength), w_h = omega * Pendulum::kStep;
+  const double e0 = energy(s);
+  double drift = 0.0, previous = s.q[0], first = -1.0, last = -1.0;
+  int crossings = 0;
+  for (int k = 0; k < 20000; ++k) {
+    REQUIRE(mbrt::schemes::tree_step<Pendulum>(s, w) == mbrt::StepStatus::ok);
+    // Energy relative to the swing's (e0 + g L is its kinetic energy at the bottom).
+    drift = std::max(drift, std::abs(energy(s) - e0) / (e0 + kG * kLength));
+    if (previous > 0.0 && s.q[0] <= 0.0) {
+      const double t = s.t - Pendulum::kStep * s.q[0] / (s.q[0] - previous);
+      if (first < 0.0) first = t;
+      last = t;
+      ++crossings;
+    }
+    previous = s.q[0];
+  }
+  REQUIRE(crossings > 3);
+  const double period = (last - first) / (crossings - 1);
+  const double period_error = period * omega / (2.0 * M_PI) - 1.0;
+  MESSAGE("period error " << period_error << ", energy drift " << drift << " (w h = " << w_h << ")");
+  CHECK(std::abs(period_error) < w_h * w_h / 2.0);
+  CHECK(drift < w_h * w_h / 2.0);
+  CHECK(std::abs(s.rigid[0].r.norm() - kLength) < 1e-15);
+}
+
+TEST_CASE("the tree template restores the joint coordinates and the bodies after a non-finite step") {
+  State s = start(0.5);
+  Workspace w;
+  REQUIRE(mbrt::schemes::tree_step<Pendulum>(s, w) == mbrt::StepStatus::ok);
+  const State before = s;
+  s.qdd[0] = std::numeric_limits<double>::infinity();
+  CHECK(mbrt::schemes::tree_step<Pendulum>(s, w) == mbrt::StepStatus::non_finite);
+  CHECK(s.t == before.t);
+  CHECK(s.q[0] == before.q[0]);
+  CHECK(s.qd[0] == before.qd[0]);
+  CHECK(s.rigid[0].r == before.rigid[0].r);
+}
