@@ -2,13 +2,15 @@
 // peers' fixed-step integrators (MuJoCo, Simbody, where found), on the same
 // mechanisms against independent references (problems.hpp). All runs are
 // measured alternately in one process, several rounds, the fastest round of
-// each run kept, so machine noise hits every engine alike.
+// each run kept, so machine noise hits every engine alike. The peers run
+// the problems mbrt's models were built for (MBRT_TIMING_WP_PROBLEMS).
 //   work_precision [ROUNDS=3] [CSV=work_precision.csv]
 // Writes the CSV and prints a table with each run's time ratio at equal error
 // to MuJoCo and (mbrt runs) to staggered-pcst.
 #include <cstdio>
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -34,10 +36,21 @@ MBRT_VARIANTS(MBRT_ADAPT)
 
 using PeerRun = Measurement (*)(const timing::Problem&, const std::string&, double);
 
+// The problems built (timing/CMakeLists.txt's wp_problems, or a part of them).
+const std::set<std::string>& built_problems() {
+  static const std::set<std::string> names = {
+#define MBRT_NAME(name, ns, method) #name,
+      MBRT_VARIANTS(MBRT_NAME)
+#undef MBRT_NAME
+  };
+  return names;
+}
+
 void add_peer(std::vector<Run>& runs, const std::vector<std::string>& methods, PeerRun run) {
   for (const timing::Problem& p : timing::problems())
-    for (const std::string& method : methods)
-      for (double h : timing::peer_steps(p)) runs.push_back([&p, method, h, run] { return run(p, method, h); });
+    if (built_problems().count(p.name))
+      for (const std::string& method : methods)
+        for (double h : timing::peer_steps(p)) runs.push_back([&p, method, h, run] { return run(p, method, h); });
 }
 
 std::vector<Run> all_runs() {

@@ -85,15 +85,15 @@ def ratio_range(runs, column):
     return "%s to %s" % (g(ratios[0]), g(ratios[-1])) if ratios else "-"
 
 
-def nps_against_pcst(out, data):
-    """Every staggered-nps run with its ratios: whether it is the faster scheme at equal error."""
-    runs = [r for r in data if r["engine"] == "mbrt" and r["method"].startswith("staggered-nps")]
+def against_pcst(out, data, scheme):
+    """Every run of an mbrt scheme with its ratios: whether it is the faster scheme at equal error."""
+    runs = [r for r in data if r["engine"] == "mbrt" and r["method"].split(" ")[0] == scheme]
     if not runs:
         return
-    paragraph(out, "### staggered-nps against staggered-pcst")
-    paragraph(out, "Each staggered-nps run, its time over staggered-pcst's at the same error (below 1 "
-              "staggered-nps is faster; - where staggered-pcst's curve does not reach that error) and over "
-              "MuJoCo's.")
+    paragraph(out, "### %s against staggered-pcst" % scheme)
+    paragraph(out, "Each %s run, its time over staggered-pcst's at the same error (below 1 "
+              "%s is faster; - where staggered-pcst's curve does not reach that error) and over "
+              "MuJoCo's." % (scheme, scheme))
     table(out, ["problem", "method", "h", "error", "ns per step", "time ratio to staggered-pcst",
                 "time ratio to MuJoCo"],
           [[r["problem"], r["method"], g(r["h"]), g(r["max_error"], 2) + (" (failed)" if r["failed"] != "0" else ""),
@@ -144,6 +144,33 @@ def work_precision(out):
         "a MuJoCo spatial tendon and a Simbody two-point spring, its torque a MuJoCo actuator's constant "
         "bias and a Simbody mobility force. Allocations are "
         "counted by a malloc interposer over the stepping only.")
+    problems = curve_table(out, data)
+    against_pcst(out, data, "staggered-nps")
+    for p in problems:
+        image(out, "work_precision_%s.png" % p, p + " work-precision")
+    work_precision_trees(out)
+
+
+def work_precision_trees(out):
+    """timing/work_precision's run of staggered-tree on the trees, against staggered-pcst and the peers."""
+    paragraph(out, "### staggered-tree on the trees")
+    data = measured(out, "work_precision_trees", "timing/work_precision 3 arm_3,chain_10 "
+                    "staggered-pcst,staggered-tree work_precision_trees")
+    if data is None:
+        return
+    paragraph(out,
+        "The problems whose models are trees of revolute joints (the 3-link arm and the 10-link chain), "
+        "in staggered-tree and staggered-pcst and the peers' integrators, in one run of its own (so the "
+        "ratios compare runs of that process only); columns as above. Full table: "
+        "[work_precision_trees.txt](%swork_precision_trees.txt)." % LINK)
+    problems = curve_table(out, data)
+    against_pcst(out, data, "staggered-tree")
+    for p in problems:
+        image(out, "work_precision_trees_%s.png" % p, p + " work-precision, staggered-tree")
+
+
+def curve_table(out, data):
+    """One row per problem and curve (engine, method): error range, cost, ratios at equal error."""
     header = ["problem", "engine", "method", "error range", "ns per step", "allocations per step",
               "time ratio to MuJoCo at equal error", "time ratio to staggered-pcst at equal error"]
     body = []
@@ -173,9 +200,7 @@ def work_precision(out):
                 ratio_range(good, "time_ratio_to_staggered_pcst"),
             ])
     table(out, header, body)
-    nps_against_pcst(out, data)
-    for p in problems:
-        image(out, "work_precision_%s.png" % p, p + " work-precision")
+    return problems
 
 
 def wcet(out):
@@ -235,7 +260,10 @@ def stability(out):
             "Conservative models of tools/make_spatial.py (docs/stability.md), every mbrt scheme and "
             "MuJoCo's and Simbody's fixed-step integrators (timing/peer_stability.cpp) on the same model. "
             "Energy from the body states (timing/stress_energy.py, peer_stability); drift: the largest "
-            "|E - E0| / |E0| over the run; t reached: when the state stopped being finite, or the end.")
+            "|E - E0| / |E0| over the run; t reached: when the state stopped being finite, or the end. "
+            "staggered-tree runs only the models on revolute joints (the arms and the revolute chains). "
+            "Rows of an earlier run that the last one did not redo are kept; the machine lines marked "
+            "`earlier run` are that run's, and ns per step compare only within one run.")
         table(out, ["model", "engine", "h", "finite", "t reached (s)", "largest drift", "drift at the end",
                     "ns per step"],
               [[r["model"], r["engine"], r["h"], r["finite"], g(r["t_reached"]), g(r["max_relative_drift"]),
@@ -263,9 +291,11 @@ def stability(out):
         paragraph(out,
             "The planar chain of tools/make_chain.py at h = 1e-4 s in mbrt's schemes and, beside them, "
             "MuJoCo's and Simbody's fixed-step integrators on the same chain (timing/peer_chain_step.cpp; "
-            "`ENGINE-METHOD`, in joint coordinates, so no constraint rows). Instructions per step by callgrind "
+            "`ENGINE-METHOD`, in joint coordinates, so no constraint rows; staggered-tree steps the joint "
+            "angles too). Instructions per step by callgrind "
             "from runs of K and 2K steps (mbrt K = 200, peers K = 20); ns per step over 20000 steps for mbrt, "
-            "2000 for the peers.")
+            "2000 for the peers. Rows of schemes the last run did not run are an earlier run's (the machine "
+            "lines marked `earlier run`).")
         table(out, ["links", "scheme", "constraint rows", "instructions per step", "ns per step"],
               [[r["links"], r["scheme"], r["constraint_rows"], r["instructions_per_step"], g(r["ns_per_step"])]
                for r in data])
