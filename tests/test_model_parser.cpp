@@ -912,7 +912,7 @@ solver:
   scheme: rk4
 )",
                     "solver.scheme", 5,
-                    "expected one of: staggered-pcst, staggered-nps, ali3p, blajer, baumgarte, got 'rk4'");
+                    "expected one of: staggered-pcst, staggered-nps, ali3p, blajer, baumgarte, staggered-tree, got 'rk4'");
 }
 
 TEST_CASE("a non-positive step and a negative penalty are rejected") {
@@ -1082,7 +1082,8 @@ std::string item_with(const Keys& keys, const std::string& type_name, const std:
       {"lead", "0.1"},           {"radius", "0.5"},        {"center", "[0, 0, 0.5]"}, {"direction", "[1, 0, 0]"},
       {"plane_point", "[0, 0, 0]"}, {"plane_normal", "[0, 0, 1]"}, {"stiffness", "10"}, {"damping", "1"},
       {"rest_length", "0.5"},    {"value", "1"},           {"vector", "[1, 0, 0]"},   {"function", "{polynomial: [0]}"},
-      {"min", "-1"},             {"max", "1"},             {"safe", "0"},             {"rest", "0.1"}};
+      {"min", "-1"},             {"max", "1"},             {"safe", "0"},             {"rest", "0.1"},
+      {"armature", "0"}};
   std::map<std::string, std::string> values = kValues;
   values["type"] = type_name;
   values["joint"] = joint;
