@@ -104,15 +104,13 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
     std::vector<Motion> v(n), c(n), a(n);
     std::vector<Inertia> ia(n);
     std::vector<Wrench> pa(n);
-    std::vector<V3> u_col(n);
-    std::vector<Expr> d(n), u(n), qd(n), inv_d(n);
+    std::vector<Expr> d(n), u(n), inv_d(n);
     std::vector<std::array<Expr, 6>> w(n);
     for (size_t k = 0; k < n; ++k) {
       const TreeFrame& f = frames[k];
       const Expr q = line.input("q[" + dof(k) + "]");
-      qd[k] = line.input("qd[" + dof(k) + "]");
       x[k] = transform_of(f, "ha[" + dof(k) + "]", q);
-      const Motion s_qd = along_axis(f, qd[k]);
+      const Motion s_qd = along_axis(f, line.input("qd[" + dof(k) + "]"));
       if (f.parent == kGround) {
         v[k] = s_qd;
         c[k] = {V3{0.0, 0.0, 0.0}, V3{0.0, 0.0, 0.0}};

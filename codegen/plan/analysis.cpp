@@ -426,7 +426,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     }
   }
   if (model.solver.scheme == mbrt::Scheme::staggered_tree) {
-    a.tree_frames = plan_tree_frames(model);
+    a.tree_frames = plan_tree_frames(model, a.constraints);
     if (!a.tree_frames.refusal.empty()) {
       throw ModelError({model.file, 0, 0}, "solver.scheme",
                        "staggered-tree needs bodies hanging from ground by revolute and prismatic joints: " +

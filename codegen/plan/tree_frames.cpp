@@ -52,7 +52,7 @@ struct WorldFrame {
 
 }  // namespace
 
-TreeFrames plan_tree_frames(const Model& model) {
+TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBlock>& blocks) {
   TreeFrames out;
   const auto refuse = [&](const std::string& why) {
     out.frames.clear();
@@ -69,8 +69,10 @@ TreeFrames plan_tree_frames(const Model& model) {
                     "; the tree step takes revolute and prismatic joints");
     }
   }
-  if (model.joints.size() > model.bodies.size()) return refuse("a joint closes a loop");
-  const TreePlan tree = plan_tree(model, {});
+  const TreePlan tree = plan_tree(model, blocks);
+  if (!tree.cut_blocks.empty()) {
+    return refuse("a joint closes a loop: " + blocks[static_cast<size_t>(tree.cut_blocks.front())].name);
+  }
   std::vector<int> frame_of(model.bodies.size(), -1);
   std::vector<int> first_child(tree.order.size(), -1);
   for (size_t k = 0; k < tree.order.size(); ++k) {

@@ -15,6 +15,8 @@
 
 namespace mbrt::codegen {
 
+struct ConstraintBlock;
+
 struct TreeFrame {
   int body;        // Model::bodies index; the joint coordinate's index is this frame's
   int parent;      // TreeFrames::frames index, or kGround
@@ -47,7 +49,7 @@ struct TreeFrames {
 
 // Frames for a model whose bodies hang from ground by revolute and prismatic
 // joints alone; otherwise frames is empty and refusal says why.
-TreeFrames plan_tree_frames(const Model& model);
+TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBlock>& blocks);
 
 
 }  // namespace mbrt::codegen

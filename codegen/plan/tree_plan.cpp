@@ -1,6 +1,5 @@
 #include "tree_plan.hpp"
 
-#include <algorithm>
 #include <string>
 
 #include "analysis.hpp"
@@ -35,7 +34,7 @@ bool has_coincidence_rows(JointType type) {
 
 TreePlan plan_tree(const Model& model, const std::vector<ConstraintBlock>& blocks) {
   const size_t bodies = model.bodies.size();
-  std::vector<bool> used(std::max(blocks.size(), model.joints.size()), false);  // joints come first in blocks
+  std::vector<bool> used(blocks.size(), false);
   std::vector<int> position(bodies, -1);  // index in t.order; -1: not placed yet
   TreePlan t;
   auto in_tree = [&](int b) { return b == kGround || position[static_cast<size_t>(b)] >= 0; };
