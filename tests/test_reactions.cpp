@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <string>
 
 #include "a01_pendulum.hpp"
 #include "cantilever_ali3p.hpp"
@@ -21,10 +22,23 @@ namespace {
     for (int i = 0; i < 1000; ++i) REQUIRE(m::step(s) == mbrt::StepStatus::ok); \
     m::Reactions r;                                                \
     m::reactions(s, r);                                            \
-    return r[0];                                                   \
+    return r[m::constraint::weld];                                 \
   }()
 
 }  // namespace
+
+TEST_CASE("the models' names index their state and tables") {
+  namespace a = mbrt::models::a01_pendulum;
+  CHECK(std::string(a::kBodyInfo[a::body::bob].name) == "bob");
+  CHECK_FALSE(a::kBodyInfo[a::body::bob].rigid);
+  CHECK(a::kBodyInfo[a::body::bob].slot == a::particle::bob);
+  CHECK(std::string(a::kConstraintInfo[a::constraint::bar].name) == "bar");
+  namespace c = mbrt::models::cantilever_nps;
+  CHECK(std::string(c::kBodyInfo[c::body::bracket].name) == "bracket");
+  CHECK(c::kBodyInfo[c::body::bracket].rigid);
+  CHECK(c::kBodyInfo[c::body::bracket].slot == c::rigid::bracket);
+  CHECK(std::string(c::kConstraintInfo[c::constraint::weld].name) == "weld");
+}
 
 TEST_CASE("A01: the bar's reaction on the bob is the tension -3 m g y along the bar, towards the pivot") {
   namespace m = mbrt::models::a01_pendulum;
@@ -35,10 +49,11 @@ TEST_CASE("A01: the bar's reaction on the bob is the tension -3 m g y along the 
     if (i % 100 != 0) continue;
     m::Reactions r;
     m::reactions(s, r);
-    const mbrt::Vec3 bob = s.particle[0].r;
+    const mbrt::Vec3 bob = s.particle[m::particle::bob].r;
     const mbrt::Vec3 expected = -(-3.0 * 9.81 * bob.y()) * bob.normalized();
-    worst = std::max(worst, (r[0].force - expected).norm());
-    CHECK(r[0].torque.norm() < 1e-9);  // a point mass: the force passes through the bob
+    const mbrt::JointReaction& bar = r[m::constraint::bar];
+    worst = std::max(worst, (bar.force - expected).norm());
+    CHECK(bar.torque.norm() < 1e-9);  // a point mass: the force passes through the bob
   }
   MESSAGE("A01 reaction force: max deviation from the tension " << worst << " N (of up to 29.4 N)");
   CHECK(worst < 1e-2);

@@ -84,3 +84,21 @@ TEST_CASE("a body spinning fast on a pivot is beyond the schemes with explicit c
     CHECK(w.find(scheme) != std::string::npos);
   }
 }
+
+TEST_CASE("staggered-tree warns of its energy on trees of several links above 1e-4 s, not on one joint") {
+  mbrt::codegen::Model arm = mbrt::codegen::load_model(std::string(MBRT_STRESS_MODELS) + "/arm_7.yaml");
+  arm.solver.scheme = mbrt::Scheme::staggered_tree;
+  arm.solver.step = 1e-3;
+  const std::string w = mbrt::codegen::tree_energy_warning(arm);
+  CHECK(w.find("arm_7: staggered-tree at step 0.001 s") != std::string::npos);
+  CHECK(w.find("not symplectic") != std::string::npos);
+  arm.solver.step = 1e-4;
+  CHECK(mbrt::codegen::tree_energy_warning(arm).empty());
+  arm.solver.step = 1e-3;
+  arm.solver.scheme = mbrt::Scheme::staggered_pcst;
+  CHECK(mbrt::codegen::tree_energy_warning(arm).empty());
+  // One revolute joint: M is constant and kick-drift-kick is the Stormer-Verlet step.
+  mbrt::codegen::Model rod = parse_model(kRodPendulum, "rod.yaml");
+  rod.solver.scheme = mbrt::Scheme::staggered_tree;
+  CHECK(mbrt::codegen::tree_energy_warning(rod).empty());
+}

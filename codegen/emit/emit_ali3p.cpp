@@ -72,13 +72,12 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
     << "    d[b] = h * u_n[b] + (h * h * (0.5 - kBeta)) * a_n[b] + (h * h * kBeta) * a[b];\n"
     << "    u[b] = u_n[b] + (h * (1.0 - kGamma)) * a_n[b] + (h * kGamma) * a[b];\n"
     << "  }\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    const std::string slot = std::to_string(a_.bodies[i].slot);
-    const std::string x = a_.bodies[i].rigid ? "rigid[" + slot + "]" : "particle[" + slot + "]";
-    o << "  s." << x << ".r = n." << x << ".r + d[" << i << "].head<3>();  // " << m_.bodies[i].name << "\n";
-    if (a_.bodies[i].rigid) {
-      o << "  s." << x << ".p = mbrt::advance_euler_parameters(n." << x << ".p, d[" << i
-        << "].tail<3>() / h, h, kEulerUpdates);\n";
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    const std::string x = (plan(i).rigid ? "rigid" : "particle") + slot_of(i);
+    o << "  s." << x << ".r = n." << x << ".r + d" << at(i) << ".head<3>();\n";
+    if (plan(i).rigid) {
+      o << "  s." << x << ".p = mbrt::advance_euler_parameters(n." << x << ".p, d" << at(i)
+        << ".tail<3>() / h, h, kEulerUpdates);\n";
     }
   }
   o << "  set_velocities(u, s);\n}\n\n";

@@ -45,14 +45,15 @@ std::string Emitter::header() const {
     o << "    {\"" << jname(j) << "\", \"" << block(j).kernel << "\", " << first_row(j) << ", " << rows(j) << "},\n";
   }
   o << "}};\n\n";
+  index_names(o);
   if (has_inputs()) input_declarations(o);
   if (has_outputs()) output_declarations(o);
   if (tree_scheme()) tree_types(o);
   o << "// Everything that changes from step to step; the caller owns it.\n"
     << "struct State {\n"
     << "  double t = 0.0;\n"
-    << "  std::array<mbrt::RigidState, kRigidBodies> rigid;     // see kBodyInfo\n"
-    << "  std::array<mbrt::ParticleState, kParticles> particle;\n"
+    << "  std::array<mbrt::RigidState, kRigidBodies> rigid;     // by rigid::BODY\n"
+    << "  std::array<mbrt::ParticleState, kParticles> particle;  // by particle::BODY\n"
     << (tree_scheme() ? "  // The joint coordinates (rad or m from t = 0), their rates and accelerations:\n"
                         "  // what step() advances; rigid holds the bodies they put where.\n"
                         "  Dofs q, qd, qdd;\n"
@@ -97,6 +98,24 @@ std::string Emitter::header() const {
     << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept;\n\n" : "")
     << "}  // namespace mbrt::models::" << m_.name << "\n";
   return o.str();
+}
+
+// The model's names as indices, so code reads s.rigid[rigid::crank] and
+// r[constraint::pin_a] rather than positions that move when the model does.
+void Emitter::index_names(std::ostringstream& o) const {
+  o << "// Indices by name: body:: into kBodyInfo and per-body arrays, rigid:: and\n"
+    << "// particle:: into State, constraint:: into kConstraintInfo and Reactions.\nnamespace body {\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) o << "inline constexpr int " << m_.bodies[i].name << " = " << i << ";\n";
+  for (const bool rigid : {true, false}) {
+    o << "}  // namespace " << (rigid ? "body" : "rigid") << "\nnamespace " << (rigid ? "rigid" : "particle") << " {\n";
+    for (size_t i = 0; i < m_.bodies.size(); ++i) {
+      if (a_.bodies[i].rigid != rigid) continue;
+      o << "inline constexpr int " << m_.bodies[i].name << " = " << a_.bodies[i].slot << ";\n";
+    }
+  }
+  o << "}  // namespace particle\nnamespace constraint {\n";
+  for (int j = 0; j < blocks(); ++j) o << "inline constexpr int " << jname(j) << " = " << j << ";\n";
+  o << "}  // namespace constraint\n\n";
 }
 
 void Emitter::constants(std::ostringstream& o) const {
@@ -302,22 +321,21 @@ void Emitter::workspace_types(std::ostringstream& o) const {
                                      : "// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of\n"
                                        "// S = B M^-1 B^T + kRegularization I over the model's fixed pattern.\n")
     << "struct ConstraintSystem {\n";
-  for (int ji = 0; ji < blocks(); ++ji) {
-    o << "  mbrt::" << type("ConstraintRows") << "<" << rows(ji) << "> rows_" << jname(ji) << ";  // " << block(ji).kernel << " "
-      << m_.body_name(block(ji).body1) << " - " << m_.body_name(block(ji).body2) << ", rows " << first_row(ji)
-      << ".." << first_row(ji) + rows(ji) - 1 << "\n";
-    if (scheme_kind() == Scheme::staggered_nps) continue;
-    for (int b : moving_bodies(ji)) {
-      o << "  " << block_type(body_dofs(), rows(ji)) << " mbt_" << ji << "_" << b << ";  // M^-1 B^T: " << jname(ji) << ", "
-        << body(b).name << "\n";
+  const bool factor = scheme_kind() != Scheme::staggered_nps;
+  for (int j = 0; j < blocks(); ++j) {
+    o << "  struct {  // " << block(j).kernel << " " << m_.body_name(block(j).body1) << " - "
+      << m_.body_name(block(j).body2) << ", rows " << first_row(j) << ".." << first_row(j) + rows(j) - 1 << "\n"
+      << "    mbrt::" << type("ConstraintRows") << "<" << rows(j) << "> rows;\n";
+    if (factor) {
+      for (int b : moving_bodies(j)) o << "    " << block_type(body_dofs(), rows(j)) << " mbt_" << body(b).name << ";\n";
+      o << "    " << block_type(rows(j), rows(j)) << " L;\n";
+      for (int k : a_.pattern.order) {
+        const auto& lower = a_.pattern.lower[static_cast<size_t>(k)];
+        if (std::find(lower.begin(), lower.end(), j) == lower.end()) continue;
+        o << "    " << block_type(rows(j), rows(k)) << " L_" << jname(k) << ";\n";
+      }
     }
-  }
-  for (int k : scheme_kind() == Scheme::staggered_nps ? std::vector<int>{} : a_.pattern.order) {
-    o << "  " << block_type(rows(k), rows(k)) << " L_" << k << "_" << k << ";  // " << jname(k) << "\n";
-    for (int i : a_.pattern.lower[static_cast<size_t>(k)]) {
-      o << "  " << block_type(rows(i), rows(k)) << " L_" << i << "_" << k << ";  // " << jname(i) << " x "
-        << jname(k) << "\n";
-    }
+    o << "  } " << jname(j) << ";\n";
   }
   o << "};\n\n";
   if (scheme_kind() == Scheme::staggered_nps) nps_workspace(o);
@@ -327,7 +345,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
   const std::string velocity_type = "std::array<mbrt::" + type("BodyVelocity") + ", kBodies>";
   o << "static " << velocity_type << " velocities_of(const State& s) noexcept {\n  " << velocity_type << " vel;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  vel[" << i << "] = mbrt::" << (planar_ ? "planar_velocity_of<kNormal>(" : "velocity_of(") << state_of(static_cast<int>(i))
+    o << "  vel" << at(static_cast<int>(i)) << " = mbrt::" << (planar_ ? "planar_velocity_of<kNormal>(" : "velocity_of(") << state_of(static_cast<int>(i))
       << ");\n";
   }
   o << "  return vel;\n}\n\n";
@@ -339,8 +357,8 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
     << "static BodyVectors generalized_velocities(const State& s) noexcept {\n  BodyVectors u;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const std::string st = state_of(static_cast<int>(i));
-    if (a_.bodies[i].rigid) o << "  u[" << i << "] << " << st << ".v, " << st << ".w;\n";
-    else o << "  u[" << i << "] << " << st << ".v, mbrt::Vec3::Zero();\n";
+    if (a_.bodies[i].rigid) o << "  u" << at(static_cast<int>(i)) << " << " << st << ".v, " << st << ".w;\n";
+    else o << "  u" << at(static_cast<int>(i)) << " << " << st << ".v, mbrt::Vec3::Zero();\n";
   }
   o << "  return u;\n}\n\n";
   if (emits_step()) {
@@ -348,30 +366,27 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
       << "static void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
     for (size_t i = 0; i < m_.bodies.size(); ++i) {
       const std::string st = state_of(static_cast<int>(i));
-      o << "  " << st << ".v = u[" << i << "].head<3>();\n";
-      if (a_.bodies[i].rigid) o << "  " << st << ".w = u[" << i << "].tail<3>();\n";
+      o << "  " << st << ".v = u" << at(static_cast<int>(i)) << ".head<3>();\n";
+      if (a_.bodies[i].rigid) o << "  " << st << ".w = u" << at(static_cast<int>(i)) << ".tail<3>();\n";
     }
     o << "}\n\n";
   }
   o << "// (a) => (s): accelerations kept for the next step.\n"
     << "static void set_accelerations(const BodyVectors& a, State& s) noexcept {\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    const BodyPlan& p = a_.bodies[i];
-    if (p.rigid) {
-      o << "  s.rigid_acceleration[" << p.slot << "] = {a[" << i << "].head<3>(), a[" << i << "].tail<3>()};\n";
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    if (plan(i).rigid) {
+      o << "  " << acceleration_of(i) << " = {a" << at(i) << ".head<3>(), a" << at(i) << ".tail<3>()};\n";
     } else {
-      o << "  s.particle_acceleration[" << p.slot << "] = a[" << i << "].head<3>();\n";
+      o << "  " << acceleration_of(i) << " = a" << at(i) << ".head<3>();\n";
     }
   }
   o << "}\n\n"
     << "static BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    const BodyPlan& p = a_.bodies[i];
-    if (p.rigid) {
-      o << "  a[" << i << "] << s.rigid_acceleration[" << p.slot << "].a, s.rigid_acceleration[" << p.slot
-        << "].alpha;\n";
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    if (plan(i).rigid) {
+      o << "  a" << at(i) << " << " << acceleration_of(i) << ".a, " << acceleration_of(i) << ".alpha;\n";
     } else {
-      o << "  a[" << i << "] << s.particle_acceleration[" << p.slot << "], mbrt::Vec3::Zero();\n";
+      o << "  a" << at(i) << " << " << acceleration_of(i) << ", mbrt::Vec3::Zero();\n";
     }
   }
   o << "  return a;\n}\n\n";
@@ -390,11 +405,11 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
     << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     if (tree) continue;
-    if (folded_weights()) o << "  l.w[" << i << "].f += " << weight_of(static_cast<int>(i)) << ";\n";
-    else if (a_.gravity) o << "  l.w[" << i << "].f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
+    if (folded_weights()) o << "  l.w" << at(static_cast<int>(i)) << ".f += " << weight_of(static_cast<int>(i)) << ";\n";
+    else if (a_.gravity) o << "  l.w" << at(static_cast<int>(i)) << ".f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
     if (gyroscopic(static_cast<int>(i)) && gyroscopic_loads()) {
-      o << "  l.w[" << i << "].tau += mbrt::gyroscopic_torque(" << mass_of(static_cast<int>(i)) << ", k.vel[" << i
-        << "].w);\n";
+      o << "  l.w" << at(static_cast<int>(i)) << ".tau += mbrt::gyroscopic_torque(" << mass_of(static_cast<int>(i)) << ", k.vel"
+        << at(static_cast<int>(i)) << ".w);\n";
     }
   }
   for (size_t e = 0; e < a_.forces.size(); ++e) {
@@ -410,22 +425,22 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
           << "    const mbrt::SpringDamperForce e = mbrt::spring_damper(" << n << ", " << motion(f.body1) << ", "
           << motion(f.body2) << ");\n";
         if (f.body2 != kGround) {
-          o << "    mbrt::add_point_force(l.w[" << f.body2 << "], " << pose(f.body2) << ", " << n << ".s2, e.f2);\n";
+          o << "    mbrt::add_point_force(l.w" << at(f.body2) << ", " << pose(f.body2) << ", " << n << ".s2, e.f2);\n";
         }
         if (f.body1 != kGround) {
-          o << "    mbrt::add_point_force(l.w[" << f.body1 << "], " << pose(f.body1) << ", " << n << ".s1, -e.f2);\n";
+          o << "    mbrt::add_point_force(l.w" << at(f.body1) << ", " << pose(f.body1) << ", " << n << ".s1, -e.f2);\n";
         }
         o << "    l.elastic_energy += e.energy;\n  }\n";
         break;
       case ForceType::torque:
         o << "  {  // torque on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1) << "\n"
           << "    const mbrt::Vec3 t = mbrt::axial_torque_world(" << n << ", " << pose(f.body1) << ");\n";
-        if (f.body2 != kGround) o << "    l.w[" << f.body2 << "].tau += " << pose(f.body2) << ".R.transpose() * t;\n";
-        if (f.body1 != kGround) o << "    l.w[" << f.body1 << "].tau -= " << pose(f.body1) << ".R.transpose() * t;\n";
+        if (f.body2 != kGround) o << "    l.w" << at(f.body2) << ".tau += " << pose(f.body2) << ".R.transpose() * t;\n";
+        if (f.body1 != kGround) o << "    l.w" << at(f.body1) << ".tau -= " << pose(f.body1) << ".R.transpose() * t;\n";
         o << "  }\n";
         break;
       case ForceType::force:
-        o << "  mbrt::add_point_force(l.w[" << f.body << "], " << pose(f.body) << ", " << n << "_point, " << n
+        o << "  mbrt::add_point_force(l.w" << at(f.body) << ", " << pose(f.body) << ", " << n << "_point, " << n
           << "_vector);\n";
         break;
       case ForceType::joint_spring: joint_spring_load(o, f, n); break;
@@ -451,12 +466,12 @@ void Emitter::joint_spring_load(std::ostringstream& o, const Force& f, const std
 }
 
 void Emitter::constraint_stage(std::ostringstream& o) const {
-  o << "// (k, t) => (c.rows_*): constraint values, Jacobians and acceleration terms.\n"
+  o << "// (k, t) => (c.*.rows): constraint values, Jacobians and acceleration terms.\n"
     << "static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {\n";
   if (blocks() == 0) o << "  (void)k;\n  (void)c;\n";
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& b = block(j);
-    o << "  c.rows_" << b.name << " = mbrt::" << b.kernel << "(" << b.name << "_frame, " << motion(b.body1) << ", "
+    o << "  " << rows_of(j) << " = mbrt::" << b.kernel << "(" << b.name << "_frame, " << motion(b.body1) << ", "
       << motion(b.body2);
     if (b.function) {
       o << ",\n      " << (b.function->is_sine ? "mbrt::sine(" + b.name + "_sine, t)"
@@ -466,7 +481,14 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
   }
   o << "}\n\n";
   if (scheme_kind() != Scheme::staggered_nps) factorization(o);
-  o << "// (c, u) => (B u)\n"
+  OpCount jacobian;
+  for (int j = 0; j < blocks(); ++j) {
+    for (size_t n = 0; n < moving_bodies(j).size(); ++n) {
+      jacobian += ops::product(rows(j), body_dofs(), 1);
+      if (n > 0) jacobian += ops::sum(rows(j), 1);
+    }
+  }
+  o << "// (c, u) => (B u). " << jacobian.text() << ".\n"
     << "static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  Rows y;\n";
   if (blocks() == 0) o << "  (void)c;\n  (void)u;\n";
   for (int ji = 0; ji < blocks(); ++ji) {
@@ -474,13 +496,21 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
   }
   o << "  return y;\n}\n\n";
   if (scheme_kind() != Scheme::staggered_nps) {
-    o << "// (c, lambda) => (u): u -= scale M^-1 B^T lambda\n"
+    OpCount forces;
+    for (int j = 0; j < blocks(); ++j) {
+      for (size_t n = 0; n < moving_bodies(j).size(); ++n) {
+        forces += ops::product(body_dofs(), rows(j), 1);
+        forces += ops::scale(body_dofs(), 1);
+        forces += ops::sum(body_dofs(), 1);
+      }
+    }
+    o << "// (c, lambda) => (u): u -= scale M^-1 B^T lambda. " << forces.text() << ".\n"
       << "static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,\n"
       << "                                BodyVectors& u) noexcept {\n";
     if (blocks() == 0) o << "  (void)c;\n  (void)lambda;\n  (void)scale;\n  (void)u;\n";
     for (int ji = 0; ji < blocks(); ++ji) {
       for (int b : moving_bodies(ji)) {
-        o << "  u[" << b << "] -= scale * (" << mbt(ji, b) << " * " << seg("lambda", ji) << ");\n";
+        o << "  u" << at(b) << " -= scale * (" << mbt(ji, b) << " * " << seg("lambda", ji) << ");\n";
       }
     }
     o << "}\n\n";
@@ -498,78 +528,132 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
   }
 }
 
+// M^-1 J^T for one moving body of a block: translations divide by the mass,
+// rotations by the principal moments or through the inverse inertia.
+OpCount Emitter::inverse_mass_ops(int b, int r) const {
+  const long n = r;
+  if (planar_) return {0, 0, (plan(b).rigid ? 3 : 2) * n, 0};
+  if (!plan(b).rigid) return {0, 0, 3 * n, 0};
+  if (plan(b).principal_axes) return {0, 0, 6 * n, 0};
+  OpCount c{0, 0, 3 * n, 0};
+  c += ops::product(3, 3, r);
+  return c;
+}
+
+OpCount Emitter::s_block_ops(int i, int j) const {
+  OpCount c;
+  int terms = 0;
+  for (int b : moving_bodies(i)) {
+    const auto mj = moving_bodies(j);
+    if (std::find(mj.begin(), mj.end(), b) == mj.end()) continue;
+    c += ops::product(rows(i), body_dofs(), rows(j));
+    if (terms++ > 0) c += ops::sum(rows(i), rows(j));
+  }
+  return c;
+}
+
 void Emitter::factorization(std::ostringstream& o) const {
   // ali3p factorizes S with a different diagonal shift for its tangent and
   // its projections; the other schemes add kRegularization.
   const bool shifted = scheme_kind() == Scheme::ali3p;
-  o << "// (c.rows_*) => (c.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.\n"
-    << "static void constraint_directions(ConstraintSystem& c) noexcept {\n";
-  if (blocks() == 0) o << "  (void)c;\n";
+  OpCount directions;
+  std::ostringstream body;
+  if (blocks() == 0) body << "  (void)c;\n";
   for (int ji = 0; ji < blocks(); ++ji) {
     for (int b : moving_bodies(ji)) {
-      o << "  " << mbt(ji, b) << " = mbrt::inverse_mass_times_transpose(" << mass_of(b) << ", c.rows_" << jname(ji)
-        << "." << side(ji, b) << ");\n";
+      body << "  " << mbt(ji, b) << " = mbrt::inverse_mass_times_transpose(" << mass_of(b) << ", " << rows_of(ji) << "."
+           << side(ji, b) << ");\n";
+      directions += inverse_mass_ops(b, rows(ji));
     }
   }
-  o << "}\n\n"
-    << "// (c.rows_*) => (c.mbt_*, c.L_*): M^-1 B^T, then S block by block in\n"
-    << "// elimination order (" << a_.pattern.fill_blocks << " fill blocks); false if a pivot is not positive.\n"
-    << "static bool factorize(ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
-    << ") noexcept {\n  bool positive = true;\n  constraint_directions(c);\n";
-  if (shifted && blocks() == 0) o << "  (void)shift;\n";
+  o << "// (c.*.rows) => (c.*.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.\n"
+    << "// " << directions.text() << ".\n"
+    << "static void constraint_directions(ConstraintSystem& c) noexcept {\n"
+    << body.str() << "}\n\n";
+
   const auto& order = a_.pattern.order;
   const auto& lower = a_.pattern.lower;
   auto in_lower = [&](int j, int i) {
     const auto& v = lower[static_cast<size_t>(j)];
     return std::find(v.begin(), v.end(), i) != v.end();
   };
+  OpCount factor = directions;
+  body.str("");
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
-    o << "  // " << jname(k) << "\n  " << L(k, k) << " = " << s_block(k, k);
-    if (!shifted) o << " + kRegularization * " << block_type(rows(k), rows(k)) << "::Identity()";
+    body << "  // " << jname(k) << "\n  " << L(k, k) << " = " << s_block(k, k);
+    factor += s_block_ops(k, k);
+    factor += ops::sum(rows(k), 1);  // the diagonal shift
+    if (!shifted) body << " + kRegularization * " << block_type(rows(k), rows(k)) << "::Identity()";
     for (size_t pj = 0; pj < pk; ++pj) {
       const int j = order[pj];
-      if (in_lower(j, k)) o << "\n      - " << L(k, j) << " * " << L(k, j) << ".transpose()";
+      if (!in_lower(j, k)) continue;
+      body << "\n      - " << L(k, j) << " * " << L(k, j) << ".transpose()";
+      factor += ops::product(rows(k), rows(j), rows(k));
+      factor += ops::sum(rows(k), rows(k));
     }
-    o << ";\n";
-    if (shifted) o << "  " << L(k, k) << ".diagonal() += " << seg("shift", k) << ";\n";
-    o << "  positive = mbrt::cholesky_in_place(" << L(k, k) << ") && positive;\n";
+    body << ";\n";
+    if (shifted) body << "  " << L(k, k) << ".diagonal() += " << seg("shift", k) << ";\n";
+    body << "  positive = mbrt::cholesky_in_place(" << L(k, k) << ") && positive;\n";
+    factor += ops::cholesky(rows(k));
     for (int i : lower[static_cast<size_t>(k)]) {
-      o << "  " << L(i, k) << " = " << s_block(i, k);
+      body << "  " << L(i, k) << " = " << s_block(i, k);
+      factor += s_block_ops(i, k);
       for (size_t pj = 0; pj < pk; ++pj) {
         const int j = order[pj];
-        if (in_lower(j, k) && in_lower(j, i)) o << "\n      - " << L(i, j) << " * " << L(k, j) << ".transpose()";
+        if (!(in_lower(j, k) && in_lower(j, i))) continue;
+        body << "\n      - " << L(i, j) << " * " << L(k, j) << ".transpose()";
+        factor += ops::product(rows(i), rows(j), rows(k));
+        factor += ops::sum(rows(i), rows(k));
       }
-      o << ";\n  mbrt::solve_right_lower_transposed(" << L(k, k) << ", " << L(i, k) << ");\n";
+      body << ";\n  mbrt::solve_right_lower_transposed(" << L(k, k) << ", " << L(i, k) << ");\n";
+      factor += ops::solve_right_lower_transposed(rows(i), rows(k));
     }
   }
-  o << "  return positive;\n}\n\n";
+  o << "// (c.*.rows) => (c.*.mbt_*, c.*.L*): M^-1 B^T, then S block by block in\n"
+    << "// elimination order (" << a_.pattern.fill_blocks << " fill blocks); false if a pivot is not positive.\n"
+    << "// " << factor.text() << ".\n"
+    << "static bool factorize(ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
+    << ") noexcept {\n  bool positive = true;\n  constraint_directions(c);\n";
+  if (shifted && blocks() == 0) o << "  (void)shift;\n";
+  o << body.str() << "  return positive;\n}\n\n";
 
-  o << "// (c.L_*, x) => (x): x := S^-1 x by forward and backward substitution.\n"
-    << "static void solve(const ConstraintSystem& c, Rows& x) noexcept {\n";
-  if (blocks() == 0) o << "  (void)c;\n  (void)x;\n";
+  OpCount solving;
+  body.str("");
+  if (blocks() == 0) body << "  (void)c;\n  (void)x;\n";
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
-    o << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
+    body << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
     for (size_t pj = 0; pj < pk; ++pj) {
       const int j = order[pj];
-      if (in_lower(j, k)) o << "    y -= " << L(k, j) << " * " << seg("x", j) << ";\n";
+      if (!in_lower(j, k)) continue;
+      body << "    y -= " << L(k, j) << " * " << seg("x", j) << ";\n";
+      solving += ops::product(rows(k), rows(j), 1);
+      solving += ops::sum(rows(k), 1);
     }
-    o << "    mbrt::solve_lower(" << L(k, k) << ", y);\n    " << seg("x", k) << " = y;\n  }\n";
+    body << "    mbrt::solve_lower(" << L(k, k) << ", y);\n    " << seg("x", k) << " = y;\n  }\n";
+    solving += ops::triangular_solve(rows(k));
   }
   for (size_t pk = order.size(); pk-- > 0;) {
     const int k = order[pk];
-    o << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
-    for (int i : lower[static_cast<size_t>(k)]) o << "    y -= " << L(i, k) << ".transpose() * " << seg("x", i) << ";\n";
-    o << "    mbrt::solve_lower_transposed(" << L(k, k) << ", y);\n    " << seg("x", k) << " = y;\n  }\n";
+    body << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
+    for (int i : lower[static_cast<size_t>(k)]) {
+      body << "    y -= " << L(i, k) << ".transpose() * " << seg("x", i) << ";\n";
+      solving += ops::product(rows(k), rows(i), 1);
+      solving += ops::sum(rows(k), 1);
+    }
+    body << "    mbrt::solve_lower_transposed(" << L(k, k) << ", y);\n    " << seg("x", k) << " = y;\n  }\n";
+    solving += ops::triangular_solve(rows(k));
   }
-  o << "}\n\n";
+  o << "// (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.\n"
+    << "// " << solving.text() << ".\n"
+    << "static void solve(const ConstraintSystem& c, Rows& x) noexcept {\n" << body.str() << "}\n\n";
 }
 
 void Emitter::stacked(std::ostringstream& o, const std::string& member) const {
   o << "static Rows stacked_" << member << "(const ConstraintSystem& c) noexcept {\n  Rows y;\n";
   if (blocks() == 0) o << "  (void)c;\n";
-  for (int j = 0; j < blocks(); ++j) o << "  " << seg("y", j) << " = c.rows_" << jname(j) << "." << member << ";\n";
+  for (int j = 0; j < blocks(); ++j) o << "  " << seg("y", j) << " = " << rows_of(j) << "." << member << ";\n";
   o << "  return y;\n}\n\n";
 }
 
@@ -580,17 +664,17 @@ std::string Emitter::seg(const std::string& v, int j) const {
 std::string Emitter::jacobian_product(int j, const std::string& u) const {
   std::string e;
   for (int b : moving_bodies(j)) {
-    e += (e.empty() ? "c.rows_" : " + c.rows_") + jname(j) + "." + side(j, b) + " * " + u + "[" + std::to_string(b) + "]";
+    e += (e.empty() ? "" : " + ") + rows_of(j) + "." + side(j, b) + " * " + u + at(b);
   }
   return e;
 }
 
-std::string Emitter::s_block(int i, int j) const {
+std::string Emitter::s_block(int i, int j, const std::string& directions) const {
   std::string e;
   for (int b : moving_bodies(i)) {
     const auto mj = moving_bodies(j);
     if (std::find(mj.begin(), mj.end(), b) == mj.end()) continue;
-    e += (e.empty() ? "" : " + ") + std::string("c.rows_") + jname(i) + "." + side(i, b) + " * " + mbt(j, b);
+    e += (e.empty() ? "" : " + ") + rows_of(i) + "." + side(i, b) + " * " + mbt(j, b, directions);
   }
   return e.empty() ? block_type(rows(i), rows(j)) + "::Zero()" : e;
 }
@@ -601,10 +685,10 @@ void Emitter::mass_products(std::ostringstream& o) const {
   if (std::none_of(a_.bodies.begin(), a_.bodies.end(), [](const BodyPlan& p) { return p.loaded; })) o << "  (void)l;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     if (!a_.bodies[i].loaded) {
-      o << "  a[" << i << "].setZero();  // " << m_.bodies[i].name << ": no applied load\n";
+      o << "  a" << at(static_cast<int>(i)) << ".setZero();  // " << m_.bodies[i].name << ": no applied load\n";
       continue;
     }
-    o << "  a[" << i << "] = mbrt::inverse_mass_times(" << mass_of(static_cast<int>(i)) << ", l.w[" << i << "]);\n";
+    o << "  a" << at(static_cast<int>(i)) << " = mbrt::inverse_mass_times(" << mass_of(static_cast<int>(i)) << ", l.w" << at(static_cast<int>(i)) << ");\n";
   }
   o << "  return a;\n}\n\n";
 }
@@ -616,9 +700,9 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
     const std::string st = state_of(static_cast<int>(i));
     if (a_.bodies[i].rigid) {
       o << "  " << st << " = {" << vec3(b.position) << ", " << vec4(b.orientation) << ",\n      " << vec3(b.velocity)
-        << ", " << vec3(b.angular_velocity) << "};  // " << b.name << "\n";
+        << ", " << vec3(b.angular_velocity) << "};\n";
     } else {
-      o << "  " << st << " = {" << vec3(b.position) << ", " << vec3(b.velocity) << "};  // " << b.name << "\n";
+      o << "  " << st << " = {" << vec3(b.position) << ", " << vec3(b.velocity) << "};\n";
     }
   }
   if (has_inputs()) {
@@ -667,14 +751,14 @@ void Emitter::diagnostics(std::ostringstream& o) const {
   mbrt::Energy e{0.0, l.elastic_energy};
 )";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  e.kinetic += mbrt::kinetic_energy(" << mass_of(static_cast<int>(i)) << ", u[" << i << "]);\n";
+    o << "  e.kinetic += mbrt::kinetic_energy(" << mass_of(static_cast<int>(i)) << ", u" << at(static_cast<int>(i)) << ");\n";
     if (a_.gravity) {
-      o << "  e.potential -= " << mass_of(static_cast<int>(i)) << ".m * kGravity.dot(k.pose[" << i << "].r);\n";
+      o << "  e.potential -= " << mass_of(static_cast<int>(i)) << ".m * kGravity.dot(" << pose(static_cast<int>(i)) << ".r);\n";
     }
   }
   for (const TreeFrame& f : a_.tree_frames.frames) {
     if (f.armature == 0.0) continue;
-    o << "  e.kinetic += " << num(0.5 * f.armature) << " * s.qd[" << f.body << "] * s.qd[" << f.body << "];  // armature of "
+    o << "  e.kinetic += " << num(0.5 * f.armature) << " * s.qd" << at(f.body) << " * s.qd" << at(f.body) << ";  // armature of "
       << m_.joints[static_cast<size_t>(f.joint)].name << "\n";
   }
   o << R"(  return e;
@@ -709,8 +793,8 @@ void Emitter::kinematics_function(std::ostringstream& o) const {
   o << "// (s) => (k): pose and velocity of every body.\n"
     << "static void kinematics(const State& s, Kinematics& k) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  k.pose[" << i << "] = mbrt::" << (planar_ ? "planar_pose_of<kNormal>(" : "pose_of(") << state_of(static_cast<int>(i))
-      << ");  // " << m_.bodies[i].name << "\n";
+    o << "  " << pose(static_cast<int>(i)) << " = mbrt::" << (planar_ ? "planar_pose_of<kNormal>(" : "pose_of(") << state_of(static_cast<int>(i))
+      << ");\n";
   }
   o << "  k.vel = velocities_of(s);\n}\n\n";
 }
@@ -806,9 +890,9 @@ void Emitter::reactions_function(std::ostringstream& o) const {
     const int on = on_body2 ? b.body2 : b.body1;
     const std::string point = on_body2 ? pose(b.body2) + ".r + " + pose(b.body2) + ".R * " + b.name + "_frame.s2"
                                        : b.name + "_frame.s2";
-    o << "  r[" << j << "] = mbrt::joint_reaction(-(c.rows_" << b.name << "." << (on_body2 ? "J2" : "J1")
+    o << "  r[constraint::" << b.name << "] = mbrt::joint_reaction(-(" << rows_of(j) << "." << (on_body2 ? "J2" : "J1")
       << ".transpose() * " << seg("s.lambda", j) << "), " << pose(on) << ",\n      " << point << ", "
-      << (on_body2 ? "1.0" : "-1.0") << ", " << pose(b.body1) << ", " << b.name << "_frame);  // " << b.name << "\n";
+      << (on_body2 ? "1.0" : "-1.0") << ", " << pose(b.body1) << ", " << b.name << "_frame);\n";
   }
   o << "}\n\n";
 }
@@ -819,11 +903,11 @@ void Emitter::gyroscopic_accelerations_function(std::ostringstream& o) const {
     << "static BodyVectors gyroscopic_accelerations(const State& s) noexcept {\n  BodyVectors g;\n";
   for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
     if (!gyroscopic(i)) {
-      o << "  g[" << i << "].setZero();\n";
+      o << "  g" << at(i) << ".setZero();\n";
       continue;
     }
-    o << "  g[" << i << "] << mbrt::Vec3::Zero(), mbrt::inverse_inertia_times(" << mass_of(i)
-      << ", mbrt::gyroscopic_torque(" << mass_of(i) << ", " << state_of(i) << ".w));  // " << body(i).name << "\n";
+    o << "  g" << at(i) << " << mbrt::Vec3::Zero(), mbrt::inverse_inertia_times(" << mass_of(i)
+      << ", mbrt::gyroscopic_torque(" << mass_of(i) << ", " << state_of(i) << ".w));\n";
   }
   o << "  return g;\n}\n\n";
 }

@@ -78,16 +78,16 @@ void Emitter::joint_axis_load(std::ostringstream& o, bool force, int body1, int 
   if (force) {
     o << "    const mbrt::" << (planar_ ? "Vec2" : "Vec3") << " f = " << value << " * (" << pose(body1) << ".R * "
       << axis << (planar_ ? ".head<2>()" : "") << ");\n";
-    if (body2 != kGround) o << "    mbrt::add_point_force(l.w[" << body2 << "], " << pose(body2) << ", " << s2 << ", f);\n";
-    if (body1 != kGround) o << "    mbrt::add_point_force(l.w[" << body1 << "], " << pose(body1) << ", " << s1 << ", -f);\n";
+    if (body2 != kGround) o << "    mbrt::add_point_force(l.w" << at(body2) << ", " << pose(body2) << ", " << s2 << ", f);\n";
+    if (body1 != kGround) o << "    mbrt::add_point_force(l.w" << at(body1) << ", " << pose(body1) << ", " << s1 << ", -f);\n";
   } else if (planar_) {
     o << "    const double t = " << value << " * " << axis << ".z();\n";
-    if (body2 != kGround) o << "    l.w[" << body2 << "].tau += t;\n";
-    if (body1 != kGround) o << "    l.w[" << body1 << "].tau -= t;\n";
+    if (body2 != kGround) o << "    l.w" << at(body2) << ".tau += t;\n";
+    if (body1 != kGround) o << "    l.w" << at(body1) << ".tau -= t;\n";
   } else {
     o << "    const mbrt::Vec3 t = " << value << " * (" << pose(body1) << ".R * " << axis << ");\n";
-    if (body2 != kGround) o << "    l.w[" << body2 << "].tau += " << pose(body2) << ".R.transpose() * t;\n";
-    if (body1 != kGround) o << "    l.w[" << body1 << "].tau -= " << pose(body1) << ".R.transpose() * t;\n";
+    if (body2 != kGround) o << "    l.w" << at(body2) << ".tau += " << pose(body2) << ".R.transpose() * t;\n";
+    if (body1 != kGround) o << "    l.w" << at(body1) << ".tau -= " << pose(body1) << ".R.transpose() * t;\n";
   }
 }
 

@@ -9,25 +9,23 @@
 
 namespace mbrt::codegen {
 
-namespace {
-
-std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
-  return s;
-}
-
-}  // namespace
-
 void Emitter::newton_matrix_type(std::ostringstream& o) const {
   o << "// Block LU factors of the position stage's Newton matrix G = B(q*) M^-1 B(q(t))^T:\n"
-    << "// G = L U with unit-diagonal L, U's diagonal blocks kept inverted.\n"
+    << "// G = L U with unit-diagonal L, U's diagonal blocks kept inverted. Per\n"
+    << "// constraint block: D, its row of L (L_OTHER) and of U (U_OTHER).\n"
     << "struct NewtonMatrix {\n";
   for (int k : a_.pattern.order) {
-    o << "  " << block_type(rows(k), rows(k)) << " D_" << k << ";  // " << jname(k) << ", inverted\n";
-    for (int i : a_.pattern.lower[static_cast<size_t>(k)]) {
-      o << "  " << block_type(rows(i), rows(k)) << " L_" << i << "_" << k << ";\n"
-        << "  " << block_type(rows(k), rows(i)) << " U_" << k << "_" << i << ";\n";
+    o << "  struct {\n    " << block_type(rows(k), rows(k)) << " D;  // inverted\n";
+    for (int j : a_.pattern.order) {
+      const auto& lower = a_.pattern.lower[static_cast<size_t>(j)];
+      if (std::find(lower.begin(), lower.end(), k) != lower.end()) {
+        o << "    " << block_type(rows(k), rows(j)) << " L_" << jname(j) << ";\n";
+      }
     }
+    for (int i : a_.pattern.lower[static_cast<size_t>(k)]) {
+      o << "    " << block_type(rows(k), rows(i)) << " U_" << jname(i) << ";\n";
+    }
+    o << "  } " << jname(k) << ";\n";
   }
   o << "};\n\n";
 }
@@ -40,56 +38,87 @@ void Emitter::newton_matrix(std::ostringstream& o) const {
     return std::find(v.begin(), v.end(), i) != v.end();
   };
   // Block (i, k) of G: B_i(q*) from c, M^-1 B_k(q(t))^T from c0.
-  auto g_block = [&](int i, int k) { return replace_all(s_block(i, k), "c.mbt_", "c0.mbt_"); };
-  auto lo = [](int i, int k) { return "g.L_" + std::to_string(i) + "_" + std::to_string(k); };
-  auto up = [](int k, int i) { return "g.U_" + std::to_string(k) + "_" + std::to_string(i); };
-  auto pivot = [](int k) { return "g.D_" + std::to_string(k); };
+  auto g_block = [&](int i, int k) { return s_block(i, k, "c0"); };
+  auto lo = [&](int i, int k) { return "g." + jname(i) + ".L_" + jname(k); };
+  auto up = [&](int k, int i) { return "g." + jname(k) + ".U_" + jname(i); };
+  auto pivot = [&](int k) { return "g." + jname(k) + ".D"; };
 
-  o << "// (c0.mbt_*, c.rows_*) => (g): G block by block in S's elimination order.\n"
-    << "static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {\n";
+  OpCount factor;
+  std::ostringstream body;
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
-    o << "  // " << jname(k) << "\n  " << pivot(k) << " = " << g_block(k, k) << " + kNewtonShift * "
-      << block_type(rows(k), rows(k)) << "::Identity()";
+    body << "  // " << jname(k) << "\n  " << pivot(k) << " = " << g_block(k, k) << " + kNewtonShift * "
+         << block_type(rows(k), rows(k)) << "::Identity()";
+    factor += s_block_ops(k, k);
+    factor += ops::sum(rows(k), 1);
     for (size_t pj = 0; pj < pk; ++pj) {
       const int j = order[pj];
-      if (coupled(j, k)) o << "\n      - " << lo(k, j) << " * " << up(j, k);
+      if (!coupled(j, k)) continue;
+      body << "\n      - " << lo(k, j) << " * " << up(j, k);
+      factor += ops::product(rows(k), rows(j), rows(k));
+      factor += ops::sum(rows(k), rows(k));
     }
-    o << ";\n";
+    body << ";\n";
     for (int i : lower[static_cast<size_t>(k)]) {
-      o << "  " << lo(i, k) << " = " << g_block(i, k);
+      body << "  " << lo(i, k) << " = " << g_block(i, k);
+      factor += s_block_ops(i, k);
       for (size_t pj = 0; pj < pk; ++pj) {
         const int j = order[pj];
-        if (coupled(j, k) && coupled(j, i)) o << "\n      - " << lo(i, j) << " * " << up(j, k);
+        if (!(coupled(j, k) && coupled(j, i))) continue;
+        body << "\n      - " << lo(i, j) << " * " << up(j, k);
+        factor += ops::product(rows(i), rows(j), rows(k));
+        factor += ops::sum(rows(i), rows(k));
       }
-      o << ";\n  " << up(k, i) << " = " << g_block(k, i);
+      body << ";\n  " << up(k, i) << " = " << g_block(k, i);
+      factor += s_block_ops(k, i);
       for (size_t pj = 0; pj < pk; ++pj) {
         const int j = order[pj];
-        if (coupled(j, k) && coupled(j, i)) o << "\n      - " << lo(k, j) << " * " << up(j, i);
+        if (!(coupled(j, k) && coupled(j, i))) continue;
+        body << "\n      - " << lo(k, j) << " * " << up(j, i);
+        factor += ops::product(rows(k), rows(j), rows(i));
+        factor += ops::sum(rows(k), rows(i));
       }
-      o << ";\n";
+      body << ";\n";
     }
-    o << "  " << pivot(k) << " = " << pivot(k) << ".partialPivLu().inverse();\n";
-    for (int i : lower[static_cast<size_t>(k)]) o << "  " << lo(i, k) << " = " << lo(i, k) << " * " << pivot(k) << ";\n";
+    body << "  " << pivot(k) << " = " << pivot(k) << ".partialPivLu().inverse();\n";
+    factor += ops::lu_inverse(rows(k));
+    for (int i : lower[static_cast<size_t>(k)]) {
+      body << "  " << lo(i, k) << " = " << lo(i, k) << " * " << pivot(k) << ";\n";
+      factor += ops::product(rows(i), rows(k), rows(k));
+    }
   }
-  if (blocks() == 0) o << "  (void)c0;\n  (void)c;\n  (void)g;\n";
-  o << "}\n\n"
-    << "// (g, x) => (x): x := G^-1 x by forward and backward substitution.\n"
-    << "static void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {\n";
+  if (blocks() == 0) body << "  (void)c0;\n  (void)c;\n  (void)g;\n";
+  o << "// (c0.*.mbt_*, c.*.rows) => (g): G block by block in S's elimination order.\n"
+    << "// " << factor.text() << ".\n"
+    << "static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {\n"
+    << body.str() << "}\n\n";
+
+  OpCount solving;
+  body.str("");
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
     for (size_t pj = 0; pj < pk; ++pj) {
       const int j = order[pj];
-      if (coupled(j, k)) o << "  " << seg("x", k) << " -= " << lo(k, j) << " * " << seg("x", j) << ";\n";
+      if (!coupled(j, k)) continue;
+      body << "  " << seg("x", k) << " -= " << lo(k, j) << " * " << seg("x", j) << ";\n";
+      solving += ops::product(rows(k), rows(j), 1);
+      solving += ops::sum(rows(k), 1);
     }
   }
   for (size_t pk = order.size(); pk-- > 0;) {
     const int k = order[pk];
-    o << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
-    for (int i : lower[static_cast<size_t>(k)]) o << "    y -= " << up(k, i) << " * " << seg("x", i) << ";\n";
-    o << "    " << seg("x", k) << " = " << pivot(k) << " * y;\n  }\n";
+    body << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
+    for (int i : lower[static_cast<size_t>(k)]) {
+      body << "    y -= " << up(k, i) << " * " << seg("x", i) << ";\n";
+      solving += ops::product(rows(k), rows(i), 1);
+      solving += ops::sum(rows(k), 1);
+    }
+    body << "    " << seg("x", k) << " = " << pivot(k) << " * y;\n  }\n";
+    solving += ops::product(rows(k), rows(k), 1);
   }
-  o << "}\n\n";
+  o << "// (g, x) => (x): x := G^-1 x by forward and backward substitution.\n"
+    << "// " << solving.text() << ".\n"
+    << "static void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {\n" << body.str() << "}\n\n";
 }
 
 }  // namespace mbrt::codegen

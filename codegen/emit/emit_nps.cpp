@@ -6,10 +6,6 @@
 
 namespace mbrt::codegen {
 
-namespace {
-std::string idx(int i) { return std::to_string(i); }
-}  // namespace
-
 // Expressions of the null-space columns of the joint that carries tb, in the
 // child's body axes: turns about and slides along the joint's directions
 // fixed in body 1. Those keep every row of the joint satisfied to first
@@ -56,11 +52,11 @@ bool Emitter::carries_parent_axes(const TreeBody& tb) const {
 // H^T x and H z for one tree body. A free body that reaches elimination has
 // children, so it is rigid (tree joints join rigid bodies only): H = I.
 std::string Emitter::h_transpose_times(const TreeBody& tb, const std::string& x) const {
-  return tb.joint >= 0 ? "t.H_" + idx(tb.body) + ".transpose() * " + x : x;
+  return tb.joint >= 0 ? "t.H_" + body(tb.body).name + ".transpose() * " + x : x;
 }
 
 std::string Emitter::h_times(const TreeBody& tb, const std::string& z) const {
-  return tb.joint >= 0 ? "t.H_" + idx(tb.body) + " * " + z : z;
+  return tb.joint >= 0 ? "t.H_" + body(tb.body).name + " * " + z : z;
 }
 
 // A free body without children needs no elimination: u' = M^-1 force.
@@ -69,11 +65,11 @@ bool Emitter::free_leaf(const TreeBody& tb) const { return tb.joint < 0 && tb.le
 // IA x; a leaf's articulated inertia is its mass matrix, which is sparse.
 std::string Emitter::ia_times(const TreeBody& tb, const std::string& x) const {
   if (tb.leaf) return "mbrt::mass_times(" + mass_of(tb.body) + ", " + x + ")";
-  return "t.IA_" + idx(tb.body) + " * " + x;
+  return "t.IA_" + body(tb.body).name + " * " + x;
 }
 
 std::string Emitter::ia_matrix(const TreeBody& tb) const {
-  return tb.leaf ? "mbrt::mass_matrix(" + mass_of(tb.body) + ")" : "t.IA_" + idx(tb.body);
+  return tb.leaf ? "mbrt::mass_matrix(" + mass_of(tb.body) + ")" : "t.IA_" + body(tb.body).name;
 }
 
 void Emitter::nps_workspace(std::ostringstream& o) const {
@@ -84,7 +80,7 @@ void Emitter::nps_workspace(std::ostringstream& o) const {
     << "// Q = M^-1 B^T G^-T with G G^T = B M^-1 B^T for its joint's rows.\n"
     << "struct TreeSystem {\n";
   for (const TreeBody& tb : tree.order) {
-    const std::string i = idx(tb.body);
+    const std::string i = body(tb.body).name;
     o << "  // " << body(tb.body).name << "\n";
     if (!tb.leaf) o << "  mbrt::Mat6 IA_" << i << ";\n";
     if (tb.joint >= 0 && tb.dofs > 0) o << "  " << block_type(6, tb.dofs) << " H_" << i << ";\n";
@@ -109,11 +105,11 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
     << "static bool factorize_tree([[maybe_unused]] const Kinematics& k, [[maybe_unused]] const ConstraintSystem& c,\n                           [[maybe_unused]] TreeSystem& t) noexcept {\n"
     << "  bool positive = true;\n";
   for (const TreeBody& tb : tree.order) {
-    if (!tb.leaf) o << "  t.IA_" << tb.body << " = mbrt::mass_matrix(" << mass_of(tb.body) << ");\n";
+    if (!tb.leaf) o << "  t.IA_" << body(tb.body).name << " = mbrt::mass_matrix(" << mass_of(tb.body) << ");\n";
   }
   for (size_t n = tree.order.size(); n-- > 0;) {
     const TreeBody& tb = tree.order[n];
-    const std::string i = idx(tb.body);
+    const std::string i = body(tb.body).name;
     if (free_leaf(tb)) continue;
     o << "  {  // " << body(tb.body).name
       << (tb.joint >= 0 ? ", joint " + jname(tb.joint) + " to " + m_.body_name(tb.parent) : ", free") << "\n";
@@ -134,7 +130,7 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
     }
     if (tb.dofs > 0) o << "    positive = mbrt::cholesky_in_place(t.L_" << i << ") && positive;\n";
     if (tb.parent != kGround) {
-      const std::string p = idx(tb.parent);
+      const std::string p = body(tb.parent).name;
       o << "    t.X_" << i << " = mbrt::rigid_transfer(" << pose(tb.parent) << ", " << pose(tb.body);
       if (tb.joint >= 0 && has_coincidence_rows(m_.joints[static_cast<size_t>(tb.joint)].type)) {
         const std::string f = jname(tb.joint) + "_frame.";
@@ -150,7 +146,7 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
       }
     }
     if (tb.joint >= 0) {
-      const std::string J = "c.rows_" + jname(tb.joint) + "." + (tb.child_is_body2 ? "J2" : "J1");
+      const std::string J = rows_of(tb.joint) + "." + (tb.child_is_body2 ? "J2" : "J1");
       o << "    t.Q_" << i << " = mbrt::inverse_mass_times_transpose(" << mass_of(tb.body) << ", " << J << ");\n"
         << "    t.G_" << i << " = " << J << " * t.Q_" << i << ";\n"
         << "    positive = mbrt::cholesky_in_place(t.G_" << i << ") && positive;\n"
@@ -190,49 +186,49 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
       << "  for (int b = 0; b < kBodies; ++b) g[b] = -force[b];\n";
   }
   for (const TreeBody& tb : tree.order) {
-    if (tb.dofs > 0 && !free_leaf(tb)) o << "  " << rows_type(tb.dofs) << " y_" << tb.body << ";  // L^-1 H^T g\n";
+    if (tb.dofs > 0 && !free_leaf(tb)) o << "  " << rows_type(tb.dofs) << " y_" << body(tb.body).name << ";  // L^-1 H^T g\n";
   }
   for (size_t n = tree.order.size(); n-- > 0;) {
     const TreeBody& tb = tree.order[n];
-    const std::string i = idx(tb.body);
+    const std::string i = body(tb.body).name;
     if (free_leaf(tb)) continue;
     o << "  {  // " << body(tb.body).name << "\n";
     if (with_targets && tb.joint >= 0) {
       o << "    " << rows_type(rows(tb.joint)) << " x = " << seg("target", tb.joint) << ";\n"
         << "    mbrt::solve_lower(t.G_" << i << ", x);\n"
-        << "    part[" << i << "] = t.Q_" << i << " * x;\n"
-        << "    g[" << i << "] += " << ia_times(tb, "part[" + i + "]") << ";\n";
+        << "    part[body::" << i << "] = t.Q_" << i << " * x;\n"
+        << "    g[body::" << i << "] += " << ia_times(tb, "part[body::" + i + "]") << ";\n";
     }
     if (tb.dofs > 0) {
-      o << "    y_" << i << " = " << h_transpose_times(tb, "g[" + i + "]") << ";\n"
+      o << "    y_" << i << " = " << h_transpose_times(tb, "g[body::" + i + "]") << ";\n"
         << "    mbrt::solve_lower(t.L_" << i << ", y_" << i << ");\n";
     }
     if (tb.parent != kGround) {
-      o << "    g[" << tb.parent << "] += t.X_" << i << ".transpose() * "
-        << (tb.dofs > 0 ? "(g[" + i + "] - t.W_" + i + " * y_" + i + ")" : "g[" + i + "]") << ";\n";
+      o << "    g" << at(tb.parent) << " += t.X_" << i << ".transpose() * "
+        << (tb.dofs > 0 ? "(g[body::" + i + "] - t.W_" + i + " * y_" + i + ")" : "g[body::" + i + "]") << ";\n";
     }
     o << "  }\n";
   }
   for (const TreeBody& tb : tree.order) {
-    const std::string i = idx(tb.body);
-    const std::string particular = with_targets ? "part[" + i + "]" : "";
+    const std::string i = body(tb.body).name;
+    const std::string particular = with_targets ? "part[body::" + i + "]" : "";
     if (free_leaf(tb)) {
-      o << "  acc[" << i << "] = mbrt::inverse_mass_times(" << mass_of(tb.body) << ", force[" << i << "]);  // "
+      o << "  acc[body::" << i << "] = mbrt::inverse_mass_times(" << mass_of(tb.body) << ", force[body::" << i << "]);  // "
         << body(tb.body).name << ", free\n";
       continue;
     }
     o << "  {  // " << body(tb.body).name << "\n";
     if (tb.parent != kGround) {
-      o << "    const mbrt::Vec6 carried = t.X_" << i << " * acc[" << tb.parent << "];\n"
-        << "    acc[" << i << "] = carried" << (with_targets ? " + " + particular : "") << ";\n";
+      o << "    const mbrt::Vec6 carried = t.X_" << i << " * acc" << at(tb.parent) << ";\n"
+        << "    acc[body::" << i << "] = carried" << (with_targets ? " + " + particular : "") << ";\n";
     } else {
-      o << "    acc[" << i << "] = " << (with_targets ? particular : "mbrt::Vec6::Zero()") << ";\n";
+      o << "    acc[body::" << i << "] = " << (with_targets ? particular : "mbrt::Vec6::Zero()") << ";\n";
     }
     if (tb.dofs > 0) {
       o << "    " << rows_type(tb.dofs) << " z = -y_" << i;
       if (tb.parent != kGround) o << " - t.W_" << i << ".transpose() * carried";
       o << ";\n    mbrt::solve_lower_transposed(t.L_" << i << ", z);\n"
-        << "    acc[" << i << "] += " << h_times(tb, "z") << ";\n";
+        << "    acc[body::" << i << "] += " << h_times(tb, "z") << ";\n";
     }
     o << "  }\n";
   }
@@ -248,10 +244,10 @@ void Emitter::nps_tree_multipliers(std::ostringstream& o) const {
     << "static void tree_multipliers([[maybe_unused]] const TreeSystem& t, [[maybe_unused]] const TreeSolution& x,\n                             [[maybe_unused]] Rows& lambda) noexcept {\n";
   for (const TreeBody& tb : a_.tree.order) {
     if (tb.joint < 0) continue;
-    const std::string i = idx(tb.body);
+    const std::string i = body(tb.body).name;
     o << "  {  // " << body(tb.body).name << "\n"
       << "    " << rows_type(rows(tb.joint)) << " l = -(t.Q_" << i << ".transpose() * ("
-      << ia_times(tb, "mbrt::Vec6(x.acc[" + i + "] - x.part[" + i + "])") << " + x.g[" << i << "]));\n"
+      << ia_times(tb, "mbrt::Vec6(x.acc[body::" + i + "] - x.part[body::" + i + "])") << " + x.g[body::" << i << "]));\n"
       << "    mbrt::solve_lower_transposed(t.G_" << i << ", l);\n"
       << "    " << seg("lambda", tb.joint) << " = l;\n  }\n";
   }
@@ -283,7 +279,7 @@ void Emitter::nps_cut_rows(std::ostringstream& o) const {
   offset = 0;
   for (int j : tree.cut_blocks) {
     for (int b : moving_bodies(j)) {
-      o << "  f[" << b << "] += c.rows_" << jname(j) << "." << side(j, b) << ".transpose() * mu.segment<" << rows(j)
+      o << "  f" << at(b) << " += " << rows_of(j) << "." << side(j, b) << ".transpose() * mu.segment<" << rows(j)
         << ">(" << offset << ");\n";
     }
     offset += rows(j);
@@ -322,9 +318,9 @@ void Emitter::nps_stages(std::ostringstream& o) const {
     << "static void implicit_stage(const ConstraintSystem& c, const TreeSystem& t, const Loads& l, const BodyVectors& u_half,\n"
     << "                    BodyVectors& u) noexcept {\n"
     << "  BodyVectors momentum;\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  momentum[" << i << "] = mbrt::mass_times(" << mass_of(static_cast<int>(i)) << ", u_half[" << i
-      << "]) + (0.5 * h) * mbrt::as_vector(l.w[" << i << "]);\n";
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    o << "  momentum" << at(i) << " = mbrt::mass_times(" << mass_of(i) << ", u_half" << at(i)
+      << ") + (0.5 * h) * mbrt::as_vector(l.w" << at(i) << ");\n";
   }
   o << "  tree_response(t, momentum, u);\n";
   if (nps_cuts()) {

@@ -72,28 +72,24 @@ void Emitter::planar_velocity_helpers(std::ostringstream& o) const {
   o << "// (s) => (u): (vx, vy, omega_z) per body.\n"
     << "static BodyVectors generalized_velocities(const State& s) noexcept {\n  BodyVectors u;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  u[" << i << "] = mbrt::planar_velocities<kNormal>(" << state_of(static_cast<int>(i)) << ");\n";
+    o << "  u" << at(static_cast<int>(i)) << " = mbrt::planar_velocities<kNormal>(" << state_of(static_cast<int>(i)) << ");\n";
   }
   o << "  return u;\n}\n\n"
     << "// (u) => (s): the in-plane velocities; the others stay zero.\n"
     << "static void set_velocities(const BodyVectors& u, State& s) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  mbrt::set_planar_velocities<kNormal>(u[" << i << "], " << state_of(static_cast<int>(i)) << ");\n";
+    o << "  mbrt::set_planar_velocities<kNormal>(u" << at(static_cast<int>(i)) << ", " << state_of(static_cast<int>(i)) << ");\n";
   }
   o << "}\n\n";
-  const auto acceleration = [&](size_t i) {
-    const BodyPlan& p = a_.bodies[i];
-    return (p.rigid ? "s.rigid_acceleration[" : "s.particle_acceleration[") + std::to_string(p.slot) + "]";
-  };
   o << "// (a) => (s): accelerations kept for the next step.\n"
     << "static void set_accelerations(const BodyVectors& a, State& s) noexcept {\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  mbrt::set_planar_accelerations<kNormal>(a[" << i << "], " << acceleration(i) << ");\n";
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    o << "  mbrt::set_planar_accelerations<kNormal>(a" << at(i) << ", " << acceleration_of(i) << ");\n";
   }
   o << "}\n\n"
     << "static BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  a[" << i << "] = mbrt::planar_accelerations<kNormal>(" << acceleration(i) << ");\n";
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    o << "  a" << at(i) << " = mbrt::planar_accelerations<kNormal>(" << acceleration_of(i) << ");\n";
   }
   o << "  return a;\n}\n\n";
 }
@@ -125,17 +121,17 @@ void Emitter::planar_force_load(std::ostringstream& o, const Force& f, const std
       o << "  {  // spring_damper " << m_.body_name(f.body1) << " - " << m_.body_name(f.body2) << "\n"
         << "    const mbrt::PlanarSpringDamperForce e = mbrt::planar_spring_damper(" << n << ", " << motion(f.body1)
         << ", " << motion(f.body2) << ");\n";
-      if (f.body2 != kGround) o << "    mbrt::add_point_force(l.w[" << f.body2 << "], " << pose(f.body2) << ", " << n << ".s2, e.f2);\n";
-      if (f.body1 != kGround) o << "    mbrt::add_point_force(l.w[" << f.body1 << "], " << pose(f.body1) << ", " << n << ".s1, -e.f2);\n";
+      if (f.body2 != kGround) o << "    mbrt::add_point_force(l.w" << at(f.body2) << ", " << pose(f.body2) << ", " << n << ".s2, e.f2);\n";
+      if (f.body1 != kGround) o << "    mbrt::add_point_force(l.w" << at(f.body1) << ", " << pose(f.body1) << ", " << n << ".s1, -e.f2);\n";
       o << "    l.elastic_energy += e.energy;\n  }\n";
       break;
     case ForceType::torque:
       o << "  // torque about the normal on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1) << "\n";
-      if (f.body2 != kGround) o << "  l.w[" << f.body2 << "].tau += " << n << ".value * " << n << ".axis1.z();\n";
-      if (f.body1 != kGround) o << "  l.w[" << f.body1 << "].tau -= " << n << ".value * " << n << ".axis1.z();\n";
+      if (f.body2 != kGround) o << "  l.w" << at(f.body2) << ".tau += " << n << ".value * " << n << ".axis1.z();\n";
+      if (f.body1 != kGround) o << "  l.w" << at(f.body1) << ".tau -= " << n << ".value * " << n << ".axis1.z();\n";
       break;
     case ForceType::force:
-      o << "  mbrt::add_point_force(l.w[" << f.body << "], " << pose(f.body) << ", " << n << "_point, mbrt::Vec2("
+      o << "  mbrt::add_point_force(l.w" << at(f.body) << ", " << pose(f.body) << ", " << n << "_point, mbrt::Vec2("
         << n << "_vector.head<2>()));  // force on " << m_.body_name(f.body) << "\n";
       break;
     case ForceType::joint_spring: joint_spring_load(o, f, n); break;

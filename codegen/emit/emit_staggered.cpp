@@ -104,13 +104,13 @@ static void correct_positions(const ConstraintSystem& c, State& s) noexcept {
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const std::string st = state_of(static_cast<int>(i));
     if (planar_) {
-      o << "  mbrt::correct_planar_position<kNormal>(" << st << ", dq[" << i << "]);\n";
+      o << "  mbrt::correct_planar_position<kNormal>(" << st << ", dq" << at(static_cast<int>(i)) << ");\n";
       continue;
     }
-    o << "  " << st << ".r += dq[" << i << "].head<3>();\n";
+    o << "  " << st << ".r += dq" << at(static_cast<int>(i)) << ".head<3>();\n";
     if (a_.bodies[i].rigid) {
-      o << "  " << st << ".p = mbrt::quaternion_product(" << st << ".p, mbrt::cayley_increment(dq[" << i
-        << "].tail<3>())).normalized();\n";
+      o << "  " << st << ".p = mbrt::quaternion_product(" << st << ".p, mbrt::cayley_increment(dq" << at(static_cast<int>(i))
+        << ".tail<3>())).normalized();\n";
     }
   }
   o << "}\n\n";

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "emit_cpp.hpp"
+#include "op_count.hpp"
 #include "principal_frame.hpp"
 #include "planar_scene.hpp"
 
@@ -122,19 +123,28 @@ class Emitter {
   }
   void gyroscopic_accelerations_function(std::ostringstream& o) const;
 
-  std::string state_of(int i) const {
-    return plan(i).rigid ? "s.rigid[" + std::to_string(plan(i).slot) + "]" : "s.particle[" + std::to_string(plan(i).slot) + "]";
+  // Indices by name (the header's namespaces body, rigid, particle, constraint):
+  // body i in the per-body arrays, its slot in State, constraint block j.
+  std::string at(int i) const { return "[body::" + body(i).name + "]"; }
+  std::string slot_of(int i) const { return (plan(i).rigid ? "[rigid::" : "[particle::") + body(i).name + "]"; }
+  std::string state_of(int i) const { return (plan(i).rigid ? "s.rigid" : "s.particle") + slot_of(i); }
+  std::string acceleration_of(int i) const {
+    return (plan(i).rigid ? "s.rigid_acceleration" : "s.particle_acceleration") + slot_of(i);
   }
   std::string mass_of(int i) const { return body(i).name + "_mass"; }
   std::string motion(int i) const {
     if (i == kGround) return "mbrt::" + type("BodyMotion") + "{kGroundPose, kGroundVelocity}";
-    const std::string n = std::to_string(i);
-    return "mbrt::" + type("BodyMotion") + "{k.pose[" + n + "], k.vel[" + n + "]}";
+    return "mbrt::" + type("BodyMotion") + "{k.pose" + at(i) + ", k.vel" + at(i) + "}";
   }
-  std::string pose(int i) const { return i == kGround ? "kGroundPose" : "k.pose[" + std::to_string(i) + "]"; }
-  // Name of the M^-1 B^T block of joint j for body b.
-  std::string mbt(int j, int b) const { return "c.mbt_" + std::to_string(j) + "_" + std::to_string(b); }
-  std::string L(int i, int k) const { return "c.L_" + std::to_string(i) + "_" + std::to_string(k); }
+  std::string pose(int i) const { return i == kGround ? "kGroundPose" : "k.pose" + at(i); }
+  // ConstraintSystem holds one struct per block, named after its joint or
+  // driver: rows, M^-1 B^T per moving body (mbt_BODY), and its row of the
+  // factor of S: the diagonal block L and L_OTHER for block (this, OTHER).
+  std::string rows_of(int j, const std::string& c = "c") const { return c + "." + jname(j) + ".rows"; }
+  std::string mbt(int j, int b, const std::string& c = "c") const {
+    return c + "." + jname(j) + ".mbt_" + body(b).name;
+  }
+  std::string L(int i, int k) const { return "c." + jname(i) + (i == k ? ".L" : ".L_" + jname(k)); }
   std::string side(int j, int b) const { return block(j).body1 == b ? "J1" : "J2"; }
   std::vector<int> moving_bodies(int j) const {
     std::vector<int> out;
@@ -145,6 +155,7 @@ class Emitter {
   // emit_cpp.cpp: the model's data and the stages every scheme shares.
   std::string header() const;
   std::string source() const;
+  void index_names(std::ostringstream& o) const;  // namespaces body, rigid, particle, constraint
   void constants(std::ostringstream& o) const;
   void frame_constants(std::ostringstream& o) const;  // joints', inputs' and force elements' vectors, in axes()
   void workspace_types(std::ostringstream& o) const;   // the kernels' types (Kinematics, ConstraintSystem, ...)
@@ -158,10 +169,14 @@ class Emitter {
   void joint_spring_load(std::ostringstream& o, const Force& f, const std::string& n) const;  // spatial or planar
   void constraint_stage(std::ostringstream& o) const;
   void factorization(std::ostringstream& o) const;  // factorize(c) and solve(c, x) over the pattern of S
+  // Operations (op_count.hpp) of M^-1 J^T for body b and r rows, and of s_block(i, j).
+  OpCount inverse_mass_ops(int b, int r) const;
+  OpCount s_block_ops(int i, int j) const;
   void stacked(std::ostringstream& o, const std::string& member) const;  // Rows stacked_<member>(c)
   std::string seg(const std::string& v, int j) const;
-  // Expression for block S(i, j) = sum over shared moving bodies of B_i M^-1 B_j^T.
-  std::string s_block(int i, int j) const;
+  // Expression for block S(i, j) = sum over shared moving bodies of B_i M^-1 B_j^T,
+  // M^-1 B_j^T from the constraint system named directions.
+  std::string s_block(int i, int j, const std::string& directions = "c") const;
   // Expression for B_j u: block j's Jacobian times its moving bodies' entries of u.
   std::string jacobian_product(int j, const std::string& u) const;
   void mass_products(std::ostringstream& o) const;

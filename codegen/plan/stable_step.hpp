@@ -27,6 +27,12 @@ StableStep estimate_stable_step(const Model& model);
 // A warning for stderr when the step is above the estimate, else "".
 std::string stable_step_warning(const Model& model, const StableStep& s);
 
+// staggered-tree's kick-drift-kick in joint coordinates is not symplectic
+// where the mass matrix M(q) varies (two joints or more): a warning for
+// stderr when the step is above kTreeEnergyStep, else "".
+inline constexpr double kTreeEnergyStep = 1e-4;  // s
+std::string tree_energy_warning(const Model& model);
+
 // The "stable_step" object of gen --report.
 std::string stable_step_json(const StableStep& s);
 

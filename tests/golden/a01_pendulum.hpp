@@ -28,11 +28,25 @@ inline constexpr std::array<mbrt::ConstraintInfo, kConstraintBlocks> kConstraint
     {"bar", "distance", 0, 1},
 }};
 
+// Indices by name: body:: into kBodyInfo and per-body arrays, rigid:: and
+// particle:: into State, constraint:: into kConstraintInfo and Reactions.
+namespace body {
+inline constexpr int bob = 0;
+}  // namespace body
+namespace rigid {
+}  // namespace rigid
+namespace particle {
+inline constexpr int bob = 0;
+}  // namespace particle
+namespace constraint {
+inline constexpr int bar = 0;
+}  // namespace constraint
+
 // Everything that changes from step to step; the caller owns it.
 struct State {
   double t = 0.0;
-  std::array<mbrt::RigidState, kRigidBodies> rigid;     // see kBodyInfo
-  std::array<mbrt::ParticleState, kParticles> particle;
+  std::array<mbrt::RigidState, kRigidBodies> rigid;     // by rigid::BODY
+  std::array<mbrt::ParticleState, kParticles> particle;  // by particle::BODY
   // Accelerations at t, reused by the next step's explicit stage.
   std::array<mbrt::RigidAcceleration, kRigidBodies> rigid_acceleration;
   std::array<mbrt::Vec3, kParticles> particle_acceleration;
@@ -59,9 +73,11 @@ struct Loads {
 // Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
 // S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
 struct ConstraintSystem {
-  mbrt::ConstraintRows<1> rows_bar;  // distance ground - bob, rows 0..0
-  Eigen::Matrix<double, 6, 1> mbt_0_0;  // M^-1 B^T: bar, bob
-  Eigen::Matrix<double, 1, 1> L_0_0;  // bar
+  struct {  // distance ground - bob, rows 0..0
+    mbrt::ConstraintRows<1> rows;
+    Eigen::Matrix<double, 6, 1> mbt_bob;
+    Eigen::Matrix<double, 1, 1> L;
+  } bar;
 };
 
 namespace planar {
@@ -83,15 +99,20 @@ struct Loads {
 // Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
 // S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
 struct ConstraintSystem {
-  mbrt::PlanarRows<1> rows_bar;  // planar_distance ground - bob, rows 0..0
-  Eigen::Matrix<double, 3, 1> mbt_0_0;  // M^-1 B^T: bar, bob
-  Eigen::Matrix<double, 1, 1> L_0_0;  // bar
+  struct {  // planar_distance ground - bob, rows 0..0
+    mbrt::PlanarRows<1> rows;
+    Eigen::Matrix<double, 3, 1> mbt_bob;
+    Eigen::Matrix<double, 1, 1> L;
+  } bar;
 };
 
 // Block LU factors of the position stage's Newton matrix G = B(q*) M^-1 B(q(t))^T:
-// G = L U with unit-diagonal L, U's diagonal blocks kept inverted.
+// G = L U with unit-diagonal L, U's diagonal blocks kept inverted. Per
+// constraint block: D, its row of L (L_OTHER) and of U (U_OTHER).
 struct NewtonMatrix {
-  Eigen::Matrix<double, 1, 1> D_0;  // bar, inverted
+  struct {
+    Eigen::Matrix<double, 1, 1> D;  // inverted
+  } bar;
 };
 
 }  // namespace planar

@@ -29,6 +29,20 @@ inline constexpr std::array<mbrt::ConstraintInfo, kConstraintBlocks> kConstraint
     {"pin", "revolute", 0, 5},
 }};
 
+// Indices by name: body:: into kBodyInfo and per-body arrays, rigid:: and
+// particle:: into State, constraint:: into kConstraintInfo and Reactions.
+namespace body {
+inline constexpr int rod = 0;
+}  // namespace body
+namespace rigid {
+inline constexpr int rod = 0;
+}  // namespace rigid
+namespace particle {
+}  // namespace particle
+namespace constraint {
+inline constexpr int pin = 0;
+}  // namespace constraint
+
 // Signals outputs() computes, as one array of values; see kOutputInfo.
 namespace output {
 inline constexpr int pin_angle = 0;  // joint_position of pin, rad
@@ -48,8 +62,8 @@ using HalfAngles = std::array<mbrt::SinCos, kDofs>;
 // Everything that changes from step to step; the caller owns it.
 struct State {
   double t = 0.0;
-  std::array<mbrt::RigidState, kRigidBodies> rigid;     // see kBodyInfo
-  std::array<mbrt::ParticleState, kParticles> particle;
+  std::array<mbrt::RigidState, kRigidBodies> rigid;     // by rigid::BODY
+  std::array<mbrt::ParticleState, kParticles> particle;  // by particle::BODY
   // The joint coordinates (rad or m from t = 0), their rates and accelerations:
   // what step() advances; rigid holds the bodies they put where.
   Dofs q, qd, qdd;
@@ -79,9 +93,11 @@ struct Loads {
 // Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
 // S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
 struct ConstraintSystem {
-  mbrt::ConstraintRows<5> rows_pin;  // revolute ground - rod, rows 0..4
-  Eigen::Matrix<double, 6, 5> mbt_0_0;  // M^-1 B^T: pin, rod
-  Eigen::Matrix<double, 5, 5> L_0_0;  // pin
+  struct {  // revolute ground - rod, rows 0..4
+    mbrt::ConstraintRows<5> rows;
+    Eigen::Matrix<double, 6, 5> mbt_rod;
+    Eigen::Matrix<double, 5, 5> L;
+  } pin;
 };
 
 }  // namespace detail

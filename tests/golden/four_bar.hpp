@@ -33,11 +33,32 @@ inline constexpr std::array<mbrt::ConstraintInfo, kConstraintBlocks> kConstraint
     {"pin_c", "revolute", 15, 5},
 }};
 
+// Indices by name: body:: into kBodyInfo and per-body arrays, rigid:: and
+// particle:: into State, constraint:: into kConstraintInfo and Reactions.
+namespace body {
+inline constexpr int crank = 0;
+inline constexpr int coupler = 1;
+inline constexpr int rocker = 2;
+}  // namespace body
+namespace rigid {
+inline constexpr int crank = 0;
+inline constexpr int coupler = 1;
+inline constexpr int rocker = 2;
+}  // namespace rigid
+namespace particle {
+}  // namespace particle
+namespace constraint {
+inline constexpr int pin_o = 0;
+inline constexpr int pin_a = 1;
+inline constexpr int pin_b = 2;
+inline constexpr int pin_c = 3;
+}  // namespace constraint
+
 // Everything that changes from step to step; the caller owns it.
 struct State {
   double t = 0.0;
-  std::array<mbrt::RigidState, kRigidBodies> rigid;     // see kBodyInfo
-  std::array<mbrt::ParticleState, kParticles> particle;
+  std::array<mbrt::RigidState, kRigidBodies> rigid;     // by rigid::BODY
+  std::array<mbrt::ParticleState, kParticles> particle;  // by particle::BODY
   // Accelerations at t, reused by the next step's explicit stage.
   std::array<mbrt::RigidAcceleration, kRigidBodies> rigid_acceleration;
   std::array<mbrt::Vec3, kParticles> particle_acceleration;
@@ -64,23 +85,31 @@ struct Loads {
 // Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
 // S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
 struct ConstraintSystem {
-  mbrt::ConstraintRows<5> rows_pin_o;  // revolute ground - crank, rows 0..4
-  Eigen::Matrix<double, 6, 5> mbt_0_0;  // M^-1 B^T: pin_o, crank
-  mbrt::ConstraintRows<5> rows_pin_a;  // revolute crank - coupler, rows 5..9
-  Eigen::Matrix<double, 6, 5> mbt_1_0;  // M^-1 B^T: pin_a, crank
-  Eigen::Matrix<double, 6, 5> mbt_1_1;  // M^-1 B^T: pin_a, coupler
-  mbrt::ConstraintRows<5> rows_pin_b;  // revolute coupler - rocker, rows 10..14
-  Eigen::Matrix<double, 6, 5> mbt_2_1;  // M^-1 B^T: pin_b, coupler
-  Eigen::Matrix<double, 6, 5> mbt_2_2;  // M^-1 B^T: pin_b, rocker
-  mbrt::ConstraintRows<5> rows_pin_c;  // revolute rocker - ground, rows 15..19
-  Eigen::Matrix<double, 6, 5> mbt_3_2;  // M^-1 B^T: pin_c, rocker
-  Eigen::Matrix<double, 5, 5> L_3_3;  // pin_c
-  Eigen::Matrix<double, 5, 5> L_2_3;  // pin_b x pin_c
-  Eigen::Matrix<double, 5, 5> L_2_2;  // pin_b
-  Eigen::Matrix<double, 5, 5> L_1_2;  // pin_a x pin_b
-  Eigen::Matrix<double, 5, 5> L_0_0;  // pin_o
-  Eigen::Matrix<double, 5, 5> L_1_0;  // pin_a x pin_o
-  Eigen::Matrix<double, 5, 5> L_1_1;  // pin_a
+  struct {  // revolute ground - crank, rows 0..4
+    mbrt::ConstraintRows<5> rows;
+    Eigen::Matrix<double, 6, 5> mbt_crank;
+    Eigen::Matrix<double, 5, 5> L;
+  } pin_o;
+  struct {  // revolute crank - coupler, rows 5..9
+    mbrt::ConstraintRows<5> rows;
+    Eigen::Matrix<double, 6, 5> mbt_crank;
+    Eigen::Matrix<double, 6, 5> mbt_coupler;
+    Eigen::Matrix<double, 5, 5> L;
+    Eigen::Matrix<double, 5, 5> L_pin_b;
+    Eigen::Matrix<double, 5, 5> L_pin_o;
+  } pin_a;
+  struct {  // revolute coupler - rocker, rows 10..14
+    mbrt::ConstraintRows<5> rows;
+    Eigen::Matrix<double, 6, 5> mbt_coupler;
+    Eigen::Matrix<double, 6, 5> mbt_rocker;
+    Eigen::Matrix<double, 5, 5> L;
+    Eigen::Matrix<double, 5, 5> L_pin_c;
+  } pin_b;
+  struct {  // revolute rocker - ground, rows 15..19
+    mbrt::ConstraintRows<5> rows;
+    Eigen::Matrix<double, 6, 5> mbt_rocker;
+    Eigen::Matrix<double, 5, 5> L;
+  } pin_c;
 };
 
 namespace planar {
@@ -102,38 +131,55 @@ struct Loads {
 // Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
 // S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
 struct ConstraintSystem {
-  mbrt::PlanarRows<2> rows_pin_o;  // planar_revolute ground - crank, rows 0..1
-  Eigen::Matrix<double, 3, 2> mbt_0_0;  // M^-1 B^T: pin_o, crank
-  mbrt::PlanarRows<2> rows_pin_a;  // planar_revolute crank - coupler, rows 2..3
-  Eigen::Matrix<double, 3, 2> mbt_1_0;  // M^-1 B^T: pin_a, crank
-  Eigen::Matrix<double, 3, 2> mbt_1_1;  // M^-1 B^T: pin_a, coupler
-  mbrt::PlanarRows<2> rows_pin_b;  // planar_revolute coupler - rocker, rows 4..5
-  Eigen::Matrix<double, 3, 2> mbt_2_1;  // M^-1 B^T: pin_b, coupler
-  Eigen::Matrix<double, 3, 2> mbt_2_2;  // M^-1 B^T: pin_b, rocker
-  mbrt::PlanarRows<2> rows_pin_c;  // planar_revolute rocker - ground, rows 6..7
-  Eigen::Matrix<double, 3, 2> mbt_3_2;  // M^-1 B^T: pin_c, rocker
-  Eigen::Matrix<double, 2, 2> L_3_3;  // pin_c
-  Eigen::Matrix<double, 2, 2> L_2_3;  // pin_b x pin_c
-  Eigen::Matrix<double, 2, 2> L_2_2;  // pin_b
-  Eigen::Matrix<double, 2, 2> L_1_2;  // pin_a x pin_b
-  Eigen::Matrix<double, 2, 2> L_0_0;  // pin_o
-  Eigen::Matrix<double, 2, 2> L_1_0;  // pin_a x pin_o
-  Eigen::Matrix<double, 2, 2> L_1_1;  // pin_a
+  struct {  // planar_revolute ground - crank, rows 0..1
+    mbrt::PlanarRows<2> rows;
+    Eigen::Matrix<double, 3, 2> mbt_crank;
+    Eigen::Matrix<double, 2, 2> L;
+  } pin_o;
+  struct {  // planar_revolute crank - coupler, rows 2..3
+    mbrt::PlanarRows<2> rows;
+    Eigen::Matrix<double, 3, 2> mbt_crank;
+    Eigen::Matrix<double, 3, 2> mbt_coupler;
+    Eigen::Matrix<double, 2, 2> L;
+    Eigen::Matrix<double, 2, 2> L_pin_b;
+    Eigen::Matrix<double, 2, 2> L_pin_o;
+  } pin_a;
+  struct {  // planar_revolute coupler - rocker, rows 4..5
+    mbrt::PlanarRows<2> rows;
+    Eigen::Matrix<double, 3, 2> mbt_coupler;
+    Eigen::Matrix<double, 3, 2> mbt_rocker;
+    Eigen::Matrix<double, 2, 2> L;
+    Eigen::Matrix<double, 2, 2> L_pin_c;
+  } pin_b;
+  struct {  // planar_revolute rocker - ground, rows 6..7
+    mbrt::PlanarRows<2> rows;
+    Eigen::Matrix<double, 3, 2> mbt_rocker;
+    Eigen::Matrix<double, 2, 2> L;
+  } pin_c;
 };
 
 // Block LU factors of the position stage's Newton matrix G = B(q*) M^-1 B(q(t))^T:
-// G = L U with unit-diagonal L, U's diagonal blocks kept inverted.
+// G = L U with unit-diagonal L, U's diagonal blocks kept inverted. Per
+// constraint block: D, its row of L (L_OTHER) and of U (U_OTHER).
 struct NewtonMatrix {
-  Eigen::Matrix<double, 2, 2> D_3;  // pin_c, inverted
-  Eigen::Matrix<double, 2, 2> L_2_3;
-  Eigen::Matrix<double, 2, 2> U_3_2;
-  Eigen::Matrix<double, 2, 2> D_2;  // pin_b, inverted
-  Eigen::Matrix<double, 2, 2> L_1_2;
-  Eigen::Matrix<double, 2, 2> U_2_1;
-  Eigen::Matrix<double, 2, 2> D_0;  // pin_o, inverted
-  Eigen::Matrix<double, 2, 2> L_1_0;
-  Eigen::Matrix<double, 2, 2> U_0_1;
-  Eigen::Matrix<double, 2, 2> D_1;  // pin_a, inverted
+  struct {
+    Eigen::Matrix<double, 2, 2> D;  // inverted
+    Eigen::Matrix<double, 2, 2> U_pin_b;
+  } pin_c;
+  struct {
+    Eigen::Matrix<double, 2, 2> D;  // inverted
+    Eigen::Matrix<double, 2, 2> L_pin_c;
+    Eigen::Matrix<double, 2, 2> U_pin_a;
+  } pin_b;
+  struct {
+    Eigen::Matrix<double, 2, 2> D;  // inverted
+    Eigen::Matrix<double, 2, 2> U_pin_a;
+  } pin_o;
+  struct {
+    Eigen::Matrix<double, 2, 2> D;  // inverted
+    Eigen::Matrix<double, 2, 2> L_pin_b;
+    Eigen::Matrix<double, 2, 2> L_pin_o;
+  } pin_a;
 };
 
 }  // namespace planar

@@ -28,11 +28,25 @@ inline constexpr std::array<mbrt::ConstraintInfo, kConstraintBlocks> kConstraint
     {"tip", "spherical", 0, 3},
 }};
 
+// Indices by name: body:: into kBodyInfo and per-body arrays, rigid:: and
+// particle:: into State, constraint:: into kConstraintInfo and Reactions.
+namespace body {
+inline constexpr int top = 0;
+}  // namespace body
+namespace rigid {
+inline constexpr int top = 0;
+}  // namespace rigid
+namespace particle {
+}  // namespace particle
+namespace constraint {
+inline constexpr int tip = 0;
+}  // namespace constraint
+
 // Everything that changes from step to step; the caller owns it.
 struct State {
   double t = 0.0;
-  std::array<mbrt::RigidState, kRigidBodies> rigid;     // see kBodyInfo
-  std::array<mbrt::ParticleState, kParticles> particle;
+  std::array<mbrt::RigidState, kRigidBodies> rigid;     // by rigid::BODY
+  std::array<mbrt::ParticleState, kParticles> particle;  // by particle::BODY
   // Accelerations at t, reused by the next step's explicit stage.
   std::array<mbrt::RigidAcceleration, kRigidBodies> rigid_acceleration;
   std::array<mbrt::Vec3, kParticles> particle_acceleration;
@@ -59,15 +73,20 @@ struct Loads {
 // Constraint rows, M^-1 B^T blocks and the block Cholesky factor of
 // S = B M^-1 B^T + kRegularization I over the model's fixed pattern.
 struct ConstraintSystem {
-  mbrt::ConstraintRows<3> rows_tip;  // spherical ground - top, rows 0..2
-  Eigen::Matrix<double, 6, 3> mbt_0_0;  // M^-1 B^T: tip, top
-  Eigen::Matrix<double, 3, 3> L_0_0;  // tip
+  struct {  // spherical ground - top, rows 0..2
+    mbrt::ConstraintRows<3> rows;
+    Eigen::Matrix<double, 6, 3> mbt_top;
+    Eigen::Matrix<double, 3, 3> L;
+  } tip;
 };
 
 // Block LU factors of the position stage's Newton matrix G = B(q*) M^-1 B(q(t))^T:
-// G = L U with unit-diagonal L, U's diagonal blocks kept inverted.
+// G = L U with unit-diagonal L, U's diagonal blocks kept inverted. Per
+// constraint block: D, its row of L (L_OTHER) and of U (U_OTHER).
 struct NewtonMatrix {
-  Eigen::Matrix<double, 3, 3> D_0;  // tip, inverted
+  struct {
+    Eigen::Matrix<double, 3, 3> D;  // inverted
+  } tip;
 };
 
 }  // namespace detail
