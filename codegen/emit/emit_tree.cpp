@@ -179,6 +179,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
     }
     o << "// (q, qd" << (tree_external_loads() ? ", k, l" : "")
       << ") => (qdd): the articulated-body recursion, this model's nonzero terms only.\n"
+      << line.count().comment() << "\n"
       << "static void joint_accelerations([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, "
       << "[[maybe_unused]] const Dofs& qd, "
       << "[[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {\n"
@@ -234,6 +235,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       for (int i = 0; i < 4; ++i) line.output(st + ".p[" + std::to_string(i) + "]", p[static_cast<size_t>(i)]);
     }
     o << "// (q, qd) => (s.rigid): where every body is and how it moves.\n"
+      << line.count().comment() << "\n"
       << "static void body_states([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, [[maybe_unused]] const Dofs& qd, State& s) noexcept {\n"
       << line.code("  ") << "}\n\n";
   }
