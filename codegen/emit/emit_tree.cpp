@@ -131,7 +131,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
         c[k] = cross(v[k], s_qd);
       }
       ia[k] = rigid_inertia(f.mass, f.com, f.inertia);
-      pa[k] = cross(v[k], times(ia[k], v[k]));
+      pa[k] = rigid_bias(f.mass, f.com, f.inertia, v[k]);
       if (tree_external_loads()) {
         // The applied wrench at the COM: force in world axes, torque in body axes.
         const std::string b = std::to_string(f.body);

@@ -143,6 +143,15 @@ inline Inertia rigid_inertia(double m, const Eigen::Vector3d& c, const Eigen::Ma
           constant(Eigen::Matrix3d(m * Eigen::Matrix3d::Identity()))};
 }
 
+// A rigid body's bias force v x* (I v) (mass m, COM c, inertia Ic about the
+// COM): with p = m (v + w x c) the COM's momentum, the Jacobi identity turns
+// it into [w x (Ic w) + c x (w x p); w x p], fewer products than I v first.
+inline Wrench rigid_bias(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& ic, const Motion& v) {
+  const V3 com = constant(c);
+  const V3 g = cross(v.w, Expr(m) * (v.v + cross(v.w, com)));
+  return {cross(v.w, times(constant(ic), v.w)) + cross(com, g), g};
+}
+
 // Coordinates turned by E (new = E old): inertia E I E^T... expressed as the
 // congruence with E^T: in the old axes, I_old = E^T I_new E.
 inline Inertia to_old_axes(const M3& e, const Inertia& I) {
