@@ -64,9 +64,11 @@ Wrench to_parent(const Transform& x, const Wrench& f) {
   return {transpose_times(x.ex, n2) + cross(x.r, g), g};
 }
 
-// A turn by a general angle (neither constant 0 nor a quarter turn, whose
-// products the plain congruence folds away) goes by the double angle.
-bool general_angle(const Expr& c, const Expr& s) { return !(c.is_constant() && s.is_constant()) || (!c.is(0.0) && !s.is(0.0)); }
+// A turn whose cos or sin is a constant 0 (none, or a quarter turn) costs the
+// plain congruence nothing; any other goes by the double angle.
+bool general_angle(const Expr& c, const Expr& s) {
+  return !(c.is_constant() && s.is_constant()) || (!c.is(0.0) && !s.is(0.0));
+}
 
 Inertia to_parent(const Transform& x, const Inertia& I) {
   const Expr c = x.rz_t[0][0], s = x.rz_t[0][1];
