@@ -41,3 +41,21 @@ TEST_CASE("a product that feeds one sum is fused; what no output needs is not pr
   CHECK(code == "const double t0 = mbrt::mul_add(x, y, z);\nconst double t1 = y * z;\n"
                 "const double t2 = mbrt::mul_add(-t1, 2.0, z);\na = t0;\nb = t2;\n");
 }
+
+TEST_CASE("the operation count is what the printed statements execute") {
+  StraightLine line;
+  const Expr x = line.input("x"), y = line.input("y"), z = line.input("z");
+  line.output("a", x * y + z);    // one fused multiply-add
+  line.output("b", (x + y) / z);  // an add and a division
+  line.output("c", x * z * 3.0);  // two products
+  const mbrt::codegen::OperationCount n = line.count();
+  CHECK(n.mul == 2);
+  CHECK(n.add == 1);
+  CHECK(n.fma == 1);
+  CHECK(n.div == 1);
+  CHECK(n.flops() == 6);
+  CHECK(n.comment() == "// 6 flops: 2 mul, 1 add, 1 fma, 1 div");
+  mbrt::codegen::OperationCount many;
+  many.mul = 1234;
+  CHECK(many.comment() == "// 1,234 flops: 1,234 mul, 0 add, 0 fma");
+}

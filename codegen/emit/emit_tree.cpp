@@ -32,7 +32,6 @@ struct Transform {
   M3 ex;
   V3 r;
   V3 d;  // (0, 0, d), or the slide (prismatic)
-  V3 origin() const { return r + transpose_times(ex, d); }  // the child's origin, parent axes
 };
 
 Transform transform_of(const TreeFrame& f, const std::string& joint_trig, const Expr& q) {
@@ -65,8 +64,23 @@ Wrench to_parent(const Transform& x, const Wrench& f) {
   return {transpose_times(x.ex, n2) + cross(x.r, g), g};
 }
 
+// A turn whose cos or sin is a constant 0 (none, or a quarter turn) costs the
+// plain congruence nothing; any other goes by the double angle.
+bool general_angle(const Expr& c, const Expr& s) {
+  return !(c.is_constant() && s.is_constant()) || (!c.is(0.0) && !s.is(0.0));
+}
+
 Inertia to_parent(const Transform& x, const Inertia& I) {
-  return to_origin(x.r, to_old_axes(x.ex, to_origin(x.d, to_old_axes(x.rz_t, I))));
+  const Expr c = x.rz_t[0][0], s = x.rz_t[0][1];
+  const Inertia turned = general_angle(c, s) ? to_old_axes(0, 1, c, s, I) : to_old_axes(x.rz_t, I);
+  const Inertia shifted = to_origin(x.d, turned);
+  // Craig's turn about x: rows and columns 1 and 2.
+  const M3& e = x.ex;
+  const bool about_x = e[0][0].is(1.0) && e[0][1].is(0.0) && e[0][2].is(0.0) && e[1][0].is(0.0) && e[2][0].is(0.0) &&
+                       e[1][1].is_constant() && e[1][2].is_constant() && e[2][2].is(e[1][1].constant()) &&
+                       e[2][1].is(-e[1][2].constant());
+  const bool plane = about_x && general_angle(e[1][1], e[1][2]);
+  return to_origin(x.r, plane ? to_old_axes(1, 2, e[1][1], e[1][2], shifted) : to_old_axes(x.ex, shifted));
 }
 
 }  // namespace
@@ -119,7 +133,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
         c[k] = cross(v[k], s_qd);
       }
       ia[k] = rigid_inertia(f.mass, f.com, f.inertia);
-      pa[k] = cross(v[k], times(ia[k], v[k]));
+      pa[k] = rigid_bias(f.mass, f.com, f.inertia, v[k]);
       if (tree_external_loads()) {
         // The applied wrench at the COM: force in world axes, torque in body axes.
         const std::string b = std::to_string(f.body);
@@ -179,61 +193,60 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
     }
     o << "// (q, qd" << (tree_external_loads() ? ", k, l" : "")
       << ") => (qdd): the articulated-body recursion, this model's nonzero terms only.\n"
+      << line.count().comment() << "\n"
       << "static void joint_accelerations([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, "
       << "[[maybe_unused]] const Dofs& qd, "
       << "[[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {\n"
       << line.code("  ") << "}\n\n";
   }
 
-  // Body states from the joint coordinates.
+  // Body states from the joint coordinates, chained from body to body in the
+  // bodies' own axes: a body's Euler parameters are its parent's times a
+  // quaternion linear in the joint's half-angle cos and sin, its rotation
+  // matrix follows from them, and every offset between a parent's centre of
+  // mass, the joint and the child's centre of mass is a constant in one
+  // body's axes.
   {
     StraightLine line;
-    std::vector<M3> rot(n);       // frame to world
-    std::vector<V3> origin(n);    // world
-    std::vector<std::array<Expr, 4>> turn(n);  // Euler parameters, frame to world
-    std::vector<Motion> v(n);
-    const auto quat_product = [](const std::array<Expr, 4>& a, const std::array<Expr, 4>& b) {
-      return std::array<Expr, 4>{a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-                                 a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-                                 a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-                                 a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
-    };
-    const auto constant4 = [](const Eigen::Vector4d& e) { return std::array<Expr, 4>{e[0], e[1], e[2], e[3]}; };
+    std::vector<Quaternion> turn(n);  // Euler parameters, body to world
+    std::vector<M3> rot(n);           // body to world
+    std::vector<V3> com(n), vel(n), omega(n);  // world
     for (size_t k = 0; k < n; ++k) {
       const TreeFrame& f = frames[k];
-      const Expr q = line.input("q[" + dof(k) + "]");
-      const Expr qd = line.input("qd[" + dof(k) + "]");
-      const Transform x = transform_of(f, "ha[" + dof(k) + "]", q);
       const bool root = f.parent == kGround;
-      const M3 parent_rot = root ? constant(Eigen::Matrix3d(Eigen::Matrix3d::Identity())) : rot[static_cast<size_t>(f.parent)];
-      const V3 parent_origin = root ? V3{0.0, 0.0, 0.0} : origin[static_cast<size_t>(f.parent)];
-      const std::array<Expr, 4> parent_turn = root ? std::array<Expr, 4>{1.0, 0.0, 0.0, 0.0} : turn[static_cast<size_t>(f.parent)];
-      // R = R_parent E^T, E = Rz(phi)^T Ex.
-      rot[k] = product(parent_rot, transpose(product(x.rz_t, x.ex)));
-      origin[k] = parent_origin + times(parent_rot, x.origin());
-      std::array<Expr, 4> t = quat_product(parent_turn, constant4(f.turn));
+      const size_t p = root ? 0 : static_cast<size_t>(f.parent);
+      const V3 to_joint = constant(f.joint_from_parent), axis_p = constant(f.axis_in_parent);
+      const V3 to_com = constant(f.com_in_body);
+      Quaternion relative = constant(f.relative_c);
+      const Expr q = line.input("q[" + dof(k) + "]"), qd = line.input("qd[" + dof(k) + "]");
       if (f.revolute) {
         const Expr ch = line.input("ha[" + dof(k) + "].c"), sh = line.input("ha[" + dof(k) + "].s");
-        t = quat_product(t, {ch, 0.0, 0.0, sh});
+        for (size_t i = 0; i < 4; ++i) relative[i] = ch * relative[i] + sh * f.relative_s[static_cast<Eigen::Index>(i)];
       }
-      turn[k] = t;
-      const Motion s_qd = along_axis(f, qd);
-      v[k] = root ? s_qd : to_child(x, v[static_cast<size_t>(f.parent)]) + s_qd;
-      const std::array<Expr, 4> p = quat_product(t, constant4(f.body_turn));
-      const V3 com = constant(f.com);
-      const V3 r = origin[k] + times(rot[k], com);
-      const V3 vel = times(rot[k], v[k].v + cross(v[k].w, com));
-      const V3 w_body = transpose_times(constant(f.body_axes), v[k].w);
+      turn[k] = root ? relative : quaternion_product(turn[p], relative);
+      rot[k] = rotation_matrix(turn[k]);
+      const M3 parent_rot = root ? constant(Eigen::Matrix3d(Eigen::Matrix3d::Identity())) : rot[p];
+      const V3 zero{0.0, 0.0, 0.0};
+      const V3 parent_omega = root ? zero : omega[p];
+      const V3 joint = times(parent_rot, f.revolute ? to_joint : to_joint + q * axis_p);  // world
+      const V3 arm = times(rot[k], to_com);                                                 // world
+      const V3 axis_w = times(parent_rot, axis_p);
+      omega[k] = f.revolute ? parent_omega + qd * axis_w : parent_omega;
+      com[k] = (root ? zero : com[p]) + joint + arm;
+      vel[k] = (root ? zero : vel[p]) + cross(parent_omega, joint) + cross(omega[k], arm);
+      if (!f.revolute) vel[k] = vel[k] + qd * axis_w;
+      const V3 w_body = transpose_times(rot[k], omega[k]);
       const std::string st = "s.rigid[" + std::to_string(a_.bodies[static_cast<size_t>(f.body)].slot) + "]";
       for (int i = 0; i < 3; ++i) {
         const std::string idx = "[" + std::to_string(i) + "]";
-        line.output(st + ".r" + idx, r[static_cast<size_t>(i)]);
-        line.output(st + ".v" + idx, vel[static_cast<size_t>(i)]);
+        line.output(st + ".r" + idx, com[k][static_cast<size_t>(i)]);
+        line.output(st + ".v" + idx, vel[k][static_cast<size_t>(i)]);
         line.output(st + ".w" + idx, w_body[static_cast<size_t>(i)]);
       }
-      for (int i = 0; i < 4; ++i) line.output(st + ".p[" + std::to_string(i) + "]", p[static_cast<size_t>(i)]);
+      for (int i = 0; i < 4; ++i) line.output(st + ".p[" + std::to_string(i) + "]", turn[k][static_cast<size_t>(i)]);
     }
     o << "// (q, qd) => (s.rigid): where every body is and how it moves.\n"
+      << line.count().comment() << "\n"
       << "static void body_states([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, [[maybe_unused]] const Dofs& qd, State& s) noexcept {\n"
       << line.code("  ") << "}\n\n";
   }

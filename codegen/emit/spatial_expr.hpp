@@ -42,10 +42,60 @@ inline M3 congruence(const M3& e, const M3& x, bool symmetric) {
     for (int j = 0; j < 3; ++j) p[i][j] = symmetric && j < i ? p[j][i] : dot(column(e, i), column(xe, j));
   return p;
 }
+// E^T X E for E a turn in the plane of axes i and j (E_ii = E_jj = c,
+// E_ij = -E_ji = s, the third axis k left alone). In that plane X's symmetric
+// part turns by the double angle (cos 2phi = c^2 - s^2, sin 2phi = 2 c s)
+// and its antisymmetric part not at all, which costs about half the
+// products of the plain congruence.
+inline M3 plane_congruence(const M3& x, size_t i, size_t j, const Expr& c, const Expr& s, bool symmetric) {
+  const size_t k = 3 - i - j;
+  const Expr cs = c * s, c2 = c * c - s * s;
+  const Expr s2 = 2.0 * cs, c2_half = 0.5 * c2;
+  const Expr sum = x[i][i] + x[j][j], d = x[i][i] - x[j][j];
+  M3 p;
+  // With sigma the symmetric and kappa the antisymmetric part of x_ij:
+  // p_ii = sum / 2 + d cos / 2 - sigma sin, p_ij = d sin / 2 + sigma cos + kappa.
+  if (symmetric) {
+    p[i][i] = sum * 0.5 + c2_half * d - s2 * x[i][j];
+    p[i][j] = p[j][i] = cs * d + c2 * x[i][j];
+  } else {
+    const Expr sigma2 = x[i][j] + x[j][i], kappa = 0.5 * (x[i][j] - x[j][i]);
+    p[i][i] = sum * 0.5 + c2_half * d - cs * sigma2;
+    const Expr sym = cs * d + c2_half * sigma2;
+    p[i][j] = sym + kappa;
+    p[j][i] = sym - kappa;
+  }
+  p[j][j] = sum - p[i][i];
+  p[i][k] = c * x[i][k] - s * x[j][k];
+  p[j][k] = s * x[i][k] + c * x[j][k];
+  p[k][i] = symmetric ? p[i][k] : c * x[k][i] - s * x[k][j];
+  p[k][j] = symmetric ? p[j][k] : s * x[k][i] + c * x[k][j];
+  p[k][k] = x[k][k];
+  return p;
+}
 inline M3 skew(const V3& r) { return {V3{0.0, -r[2], r[1]}, V3{r[2], 0.0, -r[0]}, V3{-r[1], r[0], 0.0}}; }
 inline V3 constant(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 inline M3 constant(const Eigen::Matrix3d& m) {
   return {V3{m(0, 0), m(0, 1), m(0, 2)}, V3{m(1, 0), m(1, 1), m(1, 2)}, V3{m(2, 0), m(2, 1), m(2, 2)}};
+}
+
+// Euler parameters [e0; e] and the rotation they describe (Hamilton product,
+// scalar first).
+using Quaternion = std::array<Expr, 4>;
+inline Quaternion constant(const Eigen::Vector4d& e) { return {e[0], e[1], e[2], e[3]}; }
+inline Quaternion quaternion_product(const Quaternion& a, const Quaternion& b) {
+  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+}
+// The matrix of unit Euler parameters: 1 - 2 (e2^2 + e3^2), ... (the diagonal
+// uses |e| = 1).
+inline M3 rotation_matrix(const Quaternion& e) {
+  const Expr x = 2.0 * e[1], y = 2.0 * e[2], z = 2.0 * e[3];
+  const Expr xx = x * e[1], yy = y * e[2], zz = z * e[3];
+  const Expr xy = x * e[2], xz = x * e[3], yz = y * e[3];
+  const Expr wx = x * e[0], wy = y * e[0], wz = z * e[0];
+  return {V3{1.0 - (yy + zz), xy - wz, xz + wy}, V3{xy + wz, 1.0 - (xx + zz), yz - wx},
+          V3{xz - wy, yz + wx, 1.0 - (xx + yy)}};
 }
 
 struct Motion {
@@ -93,10 +143,24 @@ inline Inertia rigid_inertia(double m, const Eigen::Vector3d& c, const Eigen::Ma
           constant(Eigen::Matrix3d(m * Eigen::Matrix3d::Identity()))};
 }
 
+// A rigid body's bias force v x* (I v) (mass m, COM c, inertia Ic about the
+// COM): with p = m (v + w x c) the COM's momentum, the Jacobi identity turns
+// it into [w x (Ic w) + c x (w x p); w x p], fewer products than I v first.
+inline Wrench rigid_bias(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& ic, const Motion& v) {
+  const V3 com = constant(c);
+  const V3 g = cross(v.w, Expr(m) * (v.v + cross(v.w, com)));
+  return {cross(v.w, times(constant(ic), v.w)) + cross(com, g), g};
+}
+
 // Coordinates turned by E (new = E old): inertia E I E^T... expressed as the
 // congruence with E^T: in the old axes, I_old = E^T I_new E.
 inline Inertia to_old_axes(const M3& e, const Inertia& I) {
   return {congruence(e, I.A, true), congruence(e, I.B, false), congruence(e, I.C, true)};
+}
+// The same for E a turn in the plane of axes i and j (plane_congruence).
+inline Inertia to_old_axes(size_t i, size_t j, const Expr& c, const Expr& s, const Inertia& I) {
+  return {plane_congruence(I.A, i, j, c, s, true), plane_congruence(I.B, i, j, c, s, false),
+          plane_congruence(I.C, i, j, c, s, true)};
 }
 
 // The origin moved from r (old origin's coordinates) to 0: with rx = skew(r),

@@ -144,45 +144,90 @@ std::string StraightLine::operand(const Expr& e, const std::vector<std::string>&
   return (e.negated_ ? "-" : "") + names[static_cast<std::size_t>(e.node_)];
 }
 
-// Prints the live nodes in order. A product used once by a sum is fused into
-// it; inputs are read where they are used.
-std::string StraightLine::code(const std::string& indent) const {
+// A node is live when an output needs it. A product used once by a sum is
+// fused into it; each sum fuses at most one product: '+' its first, '-' its
+// subtrahend first.
+StraightLine::Schedule StraightLine::schedule() const {
   const std::size_t n = nodes_.size();
+  Schedule s{std::vector<bool>(n, false), std::vector<bool>(n, false), std::vector<char>(n, 0)};
   std::vector<int> uses(n, 0);
-  std::vector<bool> live(n, false);
   const auto mark = [&](const Expr& e) {
     if (!e.is_constant()) ++uses[static_cast<std::size_t>(e.node_)];
   };
   for (const auto& [target, e] : outputs_) {
     mark(e);
-    if (!e.is_constant()) live[static_cast<std::size_t>(e.node_)] = true;
+    if (!e.is_constant()) s.live[static_cast<std::size_t>(e.node_)] = true;
   }
   for (std::size_t k = n; k-- > 0;) {
-    if (!live[k]) continue;
+    if (!s.live[k]) continue;
     for (const Expr* x : {&nodes_[k].a, &nodes_[k].b}) {
       if (x->is_constant()) continue;
       mark(*x);
-      live[static_cast<std::size_t>(x->node_)] = true;
+      s.live[static_cast<std::size_t>(x->node_)] = true;
     }
   }
   const auto fusable = [&](const Expr& e) {
     return !e.is_constant() && nodes_[static_cast<std::size_t>(e.node_)].op == '*' &&
            uses[static_cast<std::size_t>(e.node_)] == 1;
   };
-  // Each sum fuses at most one product: '+' its first, '-' its subtrahend first.
-  std::vector<bool> fused(n, false);
-  std::vector<char> fuses(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
     const Node& x = nodes_[k];
-    if (!live[k] || (x.op != '+' && x.op != '-')) continue;
+    if (!s.live[k] || (x.op != '+' && x.op != '-')) continue;
     const char first = x.op == '+' ? 'a' : 'b', second = x.op == '+' ? 'b' : 'a';
     for (const char side : {first, second}) {
       const Expr& e = side == 'a' ? x.a : x.b;
-      if (fuses[k] || !fusable(e) || fused[static_cast<std::size_t>(e.node_)]) continue;
-      fuses[k] = side;
-      fused[static_cast<std::size_t>(e.node_)] = true;
+      if (s.fuses[k] || !fusable(e) || s.fused[static_cast<std::size_t>(e.node_)]) continue;
+      s.fuses[k] = side;
+      s.fused[static_cast<std::size_t>(e.node_)] = true;
     }
   }
+  return s;
+}
+
+OperationCount StraightLine::count() const {
+  const Schedule s = schedule();
+  OperationCount c;
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    if (!s.live[k] || s.fused[k]) continue;
+    switch (nodes_[k].op) {
+      case '+':
+      case '-': ++(s.fuses[k] ? c.fma : c.add); break;
+      case '*': ++c.mul; break;
+      case '/': ++c.div; break;
+      case 's':
+      case 'c': ++c.trig; break;
+      default: break;  // inputs are read, not computed
+    }
+  }
+  return c;
+}
+
+namespace {
+std::string thousands(int n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+}  // namespace
+
+std::string OperationCount::comment() const {
+  std::string s = "// " + thousands(flops()) + " flops: " + thousands(mul) + " mul, " + thousands(add) + " add, " +
+                  thousands(fma) + " fma";
+  if (div) s += ", " + thousands(div) + " div";
+  if (trig) s += ", " + thousands(trig) + " sin/cos calls";
+  return s;
+}
+
+// Prints the live nodes in order; inputs are read where they are used.
+std::string StraightLine::code(const std::string& indent) const {
+  const std::size_t n = nodes_.size();
+  const Schedule s = schedule();
+  const std::vector<bool>& live = s.live;
+  const std::vector<bool>& fused = s.fused;
+  const std::vector<char>& fuses = s.fuses;
   std::vector<std::string> names(n);
   std::ostringstream o;
   int next = 0;

@@ -38,6 +38,14 @@ inline Expr& operator-=(Expr& a, const Expr& b) { return a = a - b; }
 Expr sin(const Expr& a);
 Expr cos(const Expr& a);
 
+// The operations the printed statements execute. A fused multiply-add counts
+// as two flops, as floating-point operation counts usually do.
+struct OperationCount {
+  int mul = 0, add = 0, fma = 0, div = 0, trig = 0;
+  int flops() const { return mul + add + div + 2 * fma; }
+  std::string comment() const;  // "// 1,234 flops: 500 mul, ..."
+};
+
 // The body of one generated function. While it exists, operations on Exprs
 // record into it; one is recorded at a time.
 class StraightLine {
@@ -53,6 +61,8 @@ class StraightLine {
   void output(const std::string& target, const Expr& e);
   // The statements, each line starting with indent.
   std::string code(const std::string& indent) const;
+  // What those statements compute.
+  OperationCount count() const;
 
   static StraightLine& current();
   Expr add(const Expr& a, const Expr& b);
@@ -68,6 +78,12 @@ class StraightLine {
     Expr a, b;
     std::string text;  // inputs
   };
+  // Which nodes are printed, and which sum takes which product into a mul_add.
+  struct Schedule {
+    std::vector<bool> live, fused;
+    std::vector<char> fuses;  // 'a' or 'b': the operand fused into this sum
+  };
+  Schedule schedule() const;
   std::string operand(const Expr& e, const std::vector<std::string>& names) const;
   std::vector<Node> nodes_;
   std::map<std::tuple<char, int, bool, double, int, bool, double>, int> seen_;

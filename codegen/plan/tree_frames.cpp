@@ -177,6 +177,26 @@ TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBloc
     f.rate0 = f.revolute ? axis.dot(w - wp) : axis.dot(body.velocity - vp - wp.cross(body.position - rp));
     out.frames.push_back(f);
   }
+
+  for (TreeFrame& f : out.frames) {
+    const bool root = f.parent == kGround;
+    const TreeFrame* parent = root ? nullptr : &out.frames[static_cast<size_t>(f.parent)];
+    const Eigen::Matrix3d parent_axes = root ? Eigen::Matrix3d::Identity() : parent->body_axes;
+    const Eigen::Vector3d parent_com = root ? Eigen::Vector3d::Zero() : parent->com;
+    const Eigen::Vector4d parent_turn = root ? Eigen::Vector4d(1, 0, 0, 0) : parent->body_turn;
+    const Eigen::Vector3d axis = f.Ex.transpose().col(2);  // parent frame
+    f.joint_from_parent = snapped(Eigen::Vector3d(parent_axes.transpose() * (f.r + f.d * axis - parent_com)));
+    f.axis_in_parent = snapped(Eigen::Vector3d(parent_axes.transpose() * axis));
+    f.com_in_body = snapped(Eigen::Vector3d(f.body_axes.transpose() * f.com));
+    // conj(parent body_turn) turn (ch + sh k) body_turn.
+    const Eigen::Vector4d lead = mbrt::quaternion_product(
+        Eigen::Vector4d(parent_turn[0], -parent_turn[1], -parent_turn[2], -parent_turn[3]), f.turn);
+    f.relative_c = snapped(Eigen::Vector4d(mbrt::quaternion_product(lead, f.body_turn)));
+    if (f.revolute) {
+      f.relative_s = snapped(Eigen::Vector4d(
+          mbrt::quaternion_product(lead, mbrt::quaternion_product(Eigen::Vector4d(0, 0, 0, 1), f.body_turn))));
+    }
+  }
   return out;
 }
 

@@ -38,6 +38,16 @@ struct TreeFrame {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d body_axes = Eigen::Matrix3d::Identity();  // body to frame axes
   Eigen::Vector4d body_turn = {1, 0, 0, 0};                  // Euler parameters of body_axes
+  // The body's state from its parent body's, in the bodies' axes: Euler
+  // parameters parent body to this body, relative_c ch + relative_s sh for
+  // a revolute joint's half angle (relative_c alone for a slide); the joint's
+  // origin at q = 0 from the parent's centre of mass and its axis, both in
+  // the parent body's axes (world axes for the root); the centre of mass from
+  // the origin, this body's axes.
+  Eigen::Vector4d relative_c = {1, 0, 0, 0}, relative_s = {0, 0, 0, 0};
+  Eigen::Vector3d joint_from_parent = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis_in_parent = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d com_in_body = Eigen::Vector3d::Zero();
   double rate0 = 0.0;  // joint rate at t = 0
   double armature = 0.0;
 };

@@ -198,6 +198,7 @@ static void half_angles([[maybe_unused]] const Dofs& q, [[maybe_unused]] HalfAng
 }
 
 // (q, qd) => (qdd): the articulated-body recursion, this model's nonzero terms only.
+// 5 flops: 3 mul, 0 add, 1 fma
 static void joint_accelerations([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, [[maybe_unused]] const Dofs& qd, [[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {
   const double t0 = ha[0].c * ha[0].c;
   const double t1 = mbrt::mul_add(-ha[0].s, ha[0].s, t0);
@@ -207,48 +208,32 @@ static void joint_accelerations([[maybe_unused]] const Dofs& q, [[maybe_unused]]
 }
 
 // (q, qd) => (s.rigid): where every body is and how it moves.
+// 12 flops: 8 mul, 2 add, 1 fma
 static void body_states([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, [[maybe_unused]] const Dofs& qd, State& s) noexcept {
-  const double t0 = ha[0].c * ha[0].c;
-  const double t1 = mbrt::mul_add(-ha[0].s, ha[0].s, t0);
-  const double t2 = ha[0].c * ha[0].s;
-  const double t3 = t2 * 2.0;
-  const double t4 = ha[0].c * 0.70710678118654757;
-  const double t5 = ha[0].c * 0.70710678118654746;
-  const double t6 = ha[0].s * 0.70710678118654746;
-  const double t7 = ha[0].s * 0.70710678118654757;
-  const double t8 = t7 * 0.5;
-  const double t9 = t6 * 0.5;
-  const double t10 = t5 * 0.5;
-  const double t11 = t4 * 0.5;
-  const double t12 = t10 + t11;
-  const double t13 = t9 + t12;
-  const double t14 = t8 + t13;
-  const double t15 = t11 - t10;
-  const double t16 = t15 - t9;
-  const double t17 = t8 + t16;
-  const double t18 = t9 - t12;
-  const double t19 = t8 + t18;
-  const double t20 = t10 - t11;
-  const double t21 = t20 - t9;
-  const double t22 = t8 + t21;
-  const double t23 = t1 * 0.5;
-  const double t24 = t3 * 0.5;
-  const double t25 = qd[0] * 0.5;
-  const double t26 = t3 * t25;
-  const double t27 = t1 * t25;
-  s.rigid[0].r[0] = t23;
-  s.rigid[0].v[0] = -t26;
+  const double t0 = ha[0].s * 0.70710678118654746;
+  const double t1 = ha[0].c * 0.70710678118654746;
+  const double t2 = t0 + t1;
+  const double t3 = t0 - t1;
+  const double t4 = t3 * 2.0;
+  const double t5 = t2 * t4;
+  const double t6 = mbrt::mul_add(t3, t4, (-1.0));
+  const double t7 = t5 * 0.5;
+  const double t8 = t6 * 0.5;
+  const double t9 = qd[0] * t8;
+  const double t10 = qd[0] * t7;
+  s.rigid[0].r[0] = -t7;
+  s.rigid[0].v[0] = t9;
   s.rigid[0].w[0] = 0.0;
   s.rigid[0].r[1] = 0.0;
   s.rigid[0].v[1] = 0.0;
   s.rigid[0].w[1] = qd[0];
-  s.rigid[0].r[2] = -t24;
-  s.rigid[0].v[2] = -t27;
+  s.rigid[0].r[2] = t8;
+  s.rigid[0].v[2] = t10;
   s.rigid[0].w[2] = 0.0;
-  s.rigid[0].p[0] = t14;
-  s.rigid[0].p[1] = t17;
-  s.rigid[0].p[2] = t19;
-  s.rigid[0].p[3] = t22;
+  s.rigid[0].p[0] = t2;
+  s.rigid[0].p[1] = 0.0;
+  s.rigid[0].p[2] = t3;
+  s.rigid[0].p[3] = 0.0;
 }
 
 static State initial_state() noexcept {

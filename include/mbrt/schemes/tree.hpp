@@ -24,12 +24,13 @@
 
 namespace mbrt::schemes {
 
-// The joint coordinates decide everything else; a body's velocity is where
-// finite rates could still overflow.
+// The joint coordinates decide everything else (the rates after the last
+// kick carry the accelerations); a body's velocity is where finite rates
+// could still overflow.
 template <class State>
 bool tree_state_finite(const State& s) noexcept {
   double sum = 0.0;
-  for (std::size_t i = 0; i < s.q.size(); ++i) sum += s.q[i] + s.qd[i] + s.qdd[i];
+  for (std::size_t i = 0; i < s.q.size(); ++i) sum += s.q[i] + s.qd[i];
   for (const RigidState& b : s.rigid) sum += b.v.sum();
   return std::isfinite(sum);
 }
