@@ -51,7 +51,9 @@ TEST_CASE("totals and the comment's text") {
   OpCount c = ops::cholesky(3);
   c += 2 * ops::product(10, 10, 10);
   CHECK(c.total() == 14 + 2 * (1000 + 900));
-  CHECK(OpCount{1234, 0, 0, 0}.text() == "1,234 flops (1,234 mul, 0 add, 0 div, 0 sqrt)");
-  CHECK(OpCount{600, 580, 40, 14}.text() == "1,234 flops (600 mul, 580 add, 40 div, 14 sqrt)");
-  CHECK(OpCount{1000000, 0, 0, 0}.text().rfind("1,000,000 flops", 0) == 0);
+  CHECK(OpCount{1234, 0, 0, 0}.text() == "1,234 flops: 1,234 mul, 0 add");
+  CHECK(OpCount{600, 580, 40, 14}.text() == "1,234 flops: 600 mul, 580 add, 40 div, 14 sqrt");
+  CHECK(mbrt::codegen::thousands(1000000) == "1,000,000");
+  CHECK(mbrt::codegen::thousands(999) == "999");
+  CHECK(mbrt::codegen::thousands(100000) == "100,000");
 }

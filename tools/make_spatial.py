@@ -6,6 +6,7 @@ Usage:
   tools/make_spatial.py arm N [--name NAME]          (N = 6 or 7)
   tools/make_spatial.py spinner [--name NAME]
   tools/make_spatial.py humanoid [--name NAME]
+  tools/make_spatial.py random N [--seed S] [--planar] [--name NAME]
 
 Every model is conservative (gravity, no damping), so its energy must stay put.
 
@@ -24,11 +25,17 @@ humanoid: a 30-dof branched tree shaped like a humanoid on a yaw pin at the
   pelvis: a 3-dof waist, a 2-dof neck, arms of 3 + 1 + 2 and legs of 3 + 1 + 2
   revolute joints (multi-axis joints as revolute joints in series through
   light links), every joint started at its own rate.
+random: N revolute joints in a chain with random general axes, joint offsets,
+  centres of mass off the link line, body orientations, masses (0.05 to 1 kg)
+  and joint rates, drawn from --seed; --planar keeps every axis along world y
+  and the links in the x-z plane. Models no one has tuned for: the class a
+  generated step's cost and stability must hold on.
 
 Initial velocities are consistent with the joints: they are computed here from
 joint rates, so `mbrt sim` runs the models without --project-initial.
 """
 import argparse
+import random
 import math
 import sys
 
@@ -244,16 +251,63 @@ def humanoid(name, out):
     write(name, comment, bodies, joints, 1.0e-3, out)
 
 
+def random_chain(n, seed, planar, name, out):
+    rng = random.Random(seed)
+
+    def random_unit():
+        while True:
+            v = [rng.gauss(0, 1) for _ in range(3)]
+            if math.sqrt(dot(v, v)) > 0.1:
+                return unit(v)
+
+    def random_rotation():
+        if planar:  # about y
+            half = rng.uniform(-1.5, 1.5)
+            return [math.cos(half), 0.0, math.sin(half), 0.0]
+        v = [rng.gauss(0, 1) for _ in range(4)]
+        norm = math.sqrt(sum(x * x for x in v))
+        return [x / norm * (1 if v[0] >= 0 else -1) for x in v]
+
+    def in_plane(v):
+        return [v[0], 0.0, v[2]] if planar else v
+
+    bodies, joints, point = [], [], [0.0, 0.0, 0.0]
+    for i in range(n):
+        if planar:
+            angle = rng.uniform(-2.5, -0.6)
+            along = [math.cos(angle), 0.0, math.sin(angle)]
+        else:
+            along = random_unit()
+            along[2] = -abs(along[2])
+        length = rng.uniform(0.15, 0.35)
+        com = add(point, add(scale(length * rng.uniform(0.3, 0.7), along), scale(0.02, in_plane(random_unit()))))
+        mass = rng.uniform(0.05, 1.0)
+        bodies.append({"name": "link_%d" % i, "mass": mass,
+                       "inertia": [mass * 0.005 * rng.uniform(0.6, 1.0) for _ in range(3)],
+                       "position": com, "orientation": random_rotation()})
+        joints.append({"name": "joint_%d" % i, "type": "revolute",
+                       "body1": "ground" if i == 0 else "link_%d" % (i - 1), "body2": "link_%d" % i,
+                       "point": point, "axis": [0.0, 1.0, 0.0] if planar else random_unit()})
+        point = add(point, add(scale(length, along), scale(0.03, in_plane(random_unit()))))
+    for j in joints:
+        j["rate"] = scale(rng.uniform(-1, 1), j["axis"])
+    tree_velocities(bodies, joints)
+    write(name, ["Random %s revolute chain, %d links, seed %d" % ("planar" if planar else "spatial", n, seed)],
+          bodies, joints, 1e-3, out)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("kind", choices=["chain", "arm", "spinner", "humanoid"])
+    parser.add_argument("kind", choices=["chain", "arm", "spinner", "humanoid", "random"])
     parser.add_argument("n", type=int, nargs="?", help="links (chain: N >= 1, arm: 6 or 7)")
     parser.add_argument("--joint", choices=["spherical", "revolute"], default="spherical", help="chain joints")
     parser.add_argument("--mass", type=float, default=0.1, help="chain: mass of a link, kg (default 0.1)")
     parser.add_argument("--length", type=float, default=0.25, help="chain: length of a link, m (default 0.25)")
+    parser.add_argument("--seed", type=int, default=1, help="random: the draw (default 1)")
+    parser.add_argument("--planar", action="store_true", help="random: a chain in the x-z plane")
     parser.add_argument("--name", help="model name")
     args = parser.parse_args()
-    if args.kind in ("chain", "arm") and (args.n is None or args.n < 1):
+    if args.kind in ("chain", "arm", "random") and (args.n is None or args.n < 1):
         parser.error("%s needs N >= 1" % args.kind)
     if args.kind == "chain":
         default = "chain_%d%s" % (args.n, "" if args.joint == "spherical" else "_revolute")
@@ -262,6 +316,9 @@ def main():
         chain(args.n, args.joint, args.name or "spatial_" + default, sys.stdout, args.mass, args.length)
     elif args.kind == "arm":
         arm(args.n, args.name or "arm_%d" % args.n, sys.stdout)
+    elif args.kind == "random":
+        default = "%srandom_chain_%d_seed_%d" % ("planar_" if args.planar else "", args.n, args.seed)
+        random_chain(args.n, args.seed, args.planar, args.name or default, sys.stdout)
     elif args.kind == "humanoid":
         humanoid(args.name or "humanoid_30", sys.stdout)
     else:

@@ -99,7 +99,7 @@ void Emitter::tree_types(std::ostringstream& o) const {
 void Emitter::tree_kernels(std::ostringstream& o) const {
   const std::vector<TreeFrame>& frames = a_.tree_frames.frames;
   const size_t n = frames.size();
-  const auto dof = [&](size_t k) { return std::to_string(frames[k].body); };
+  const auto dof = [&](size_t k) { return "body::" + body(frames[k].body).name; };
 
   o << "// (q) => (ha): the half angles every kernel below turns frames by.\n"
     << "static void half_angles([[maybe_unused]] const Dofs& q, [[maybe_unused]] HalfAngles& ha) noexcept {\n";
@@ -136,7 +136,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       pa[k] = rigid_bias(f.mass, f.com, f.inertia, v[k]);
       if (tree_external_loads()) {
         // The applied wrench at the COM: force in world axes, torque in body axes.
-        const std::string b = std::to_string(f.body);
+        const std::string b = "body::" + body(f.body).name;
         const M3 axes = constant(f.body_axes);
         V3 force_world, torque_body;
         M3 rot;
@@ -236,7 +236,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       vel[k] = (root ? zero : vel[p]) + cross(parent_omega, joint) + cross(omega[k], arm);
       if (!f.revolute) vel[k] = vel[k] + qd * axis_w;
       const V3 w_body = transpose_times(rot[k], omega[k]);
-      const std::string st = "s.rigid[" + std::to_string(a_.bodies[static_cast<size_t>(f.body)].slot) + "]";
+      const std::string st = "s.rigid" + slot_of(f.body);
       for (int i = 0; i < 3; ++i) {
         const std::string idx = "[" + std::to_string(i) + "]";
         line.output(st + ".r" + idx, com[k][static_cast<size_t>(i)]);

@@ -2,20 +2,17 @@
 
 namespace mbrt::codegen {
 
-namespace {
-
-// 1234567 -> "1,234,567"
-std::string grouped(long n) {
+std::string thousands(long n) {
   std::string digits = std::to_string(n);
   for (int at = static_cast<int>(digits.size()) - 3; at > 0; at -= 3) digits.insert(static_cast<size_t>(at), ",");
   return digits;
 }
 
-}  // namespace
-
 std::string OpCount::text() const {
-  return grouped(total()) + " flops (" + grouped(mul) + " mul, " + grouped(add) + " add, " + grouped(div) + " div, " +
-         grouped(sqrt) + " sqrt)";
+  std::string s = thousands(total()) + " flops: " + thousands(mul) + " mul, " + thousands(add) + " add";
+  if (div) s += ", " + thousands(div) + " div";
+  if (sqrt) s += ", " + thousands(sqrt) + " sqrt";
+  return s;
 }
 
 OpCount operator*(long times, const OpCount& c) {

@@ -20,9 +20,12 @@ struct OpCount {
     sqrt += o.sqrt;
     return *this;
   }
-  // "1,234 flops (600 mul, 580 add, 40 div, 14 sqrt)"
+  // "1,234 flops: 600 mul, 580 add, 40 div, 14 sqrt" (div and sqrt when there are any)
   std::string text() const;
 };
+
+// 1234567 -> "1,234,567"
+std::string thousands(long n);
 
 OpCount operator*(long times, const OpCount& c);
 

@@ -202,17 +202,6 @@ OperationCount StraightLine::count() const {
   return c;
 }
 
-namespace {
-std::string thousands(int n) {
-  std::string digits = std::to_string(n), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-}  // namespace
-
 std::string OperationCount::comment() const {
   std::string s = "// " + thousands(flops()) + " flops: " + thousands(mul) + " mul, " + thousands(add) + " add, " +
                   thousands(fma) + " fma";

@@ -93,14 +93,14 @@ static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, Cons
 }
 
 // (c.*.rows) => (c.*.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.
-// 3 flops (0 mul, 0 add, 3 div, 0 sqrt).
+// 3 flops: 0 mul, 0 add, 3 div.
 static void constraint_directions(ConstraintSystem& c) noexcept {
   c.bar.mbt_bob = mbrt::inverse_mass_times_transpose(bob_mass, c.bar.rows.J2);
 }
 
 // (c.*.rows) => (c.*.mbt_*, c.*.L*): M^-1 B^T, then S block by block in
 // elimination order (0 fill blocks); false if a pivot is not positive.
-// 16 flops (6 mul, 6 add, 3 div, 1 sqrt).
+// 16 flops: 6 mul, 6 add, 3 div, 1 sqrt.
 static bool factorize(ConstraintSystem& c) noexcept {
   bool positive = true;
   constraint_directions(c);
@@ -111,7 +111,7 @@ static bool factorize(ConstraintSystem& c) noexcept {
 }
 
 // (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.
-// 2 flops (0 mul, 0 add, 2 div, 0 sqrt).
+// 2 flops: 0 mul, 0 add, 2 div.
 static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   {  // bar
     Eigen::Matrix<double, 1, 1> y = x.segment<1>(0);
@@ -125,14 +125,14 @@ static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   }
 }
 
-// (c, u) => (B u). 11 flops (6 mul, 5 add, 0 div, 0 sqrt).
+// (c, u) => (B u). 11 flops: 6 mul, 5 add.
 static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   Rows y;
   y.segment<1>(0) = c.bar.rows.J2 * u[body::bob];
   return y;
 }
 
-// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 18 flops (12 mul, 6 add, 0 div, 0 sqrt).
+// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 18 flops: 12 mul, 6 add.
 static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
                                 BodyVectors& u) noexcept {
   u[body::bob] -= scale * (c.bar.mbt_bob * lambda.segment<1>(0));
@@ -306,14 +306,14 @@ static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, Cons
 }
 
 // (c.*.rows) => (c.*.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.
-// 2 flops (0 mul, 0 add, 2 div, 0 sqrt).
+// 2 flops: 0 mul, 0 add, 2 div.
 static void constraint_directions(ConstraintSystem& c) noexcept {
   c.bar.mbt_bob = mbrt::inverse_mass_times_transpose(bob_mass, c.bar.rows.J2);
 }
 
 // (c.*.rows) => (c.*.mbt_*, c.*.L*): M^-1 B^T, then S block by block in
 // elimination order (0 fill blocks); false if a pivot is not positive.
-// 9 flops (3 mul, 3 add, 2 div, 1 sqrt).
+// 9 flops: 3 mul, 3 add, 2 div, 1 sqrt.
 static bool factorize(ConstraintSystem& c) noexcept {
   bool positive = true;
   constraint_directions(c);
@@ -324,7 +324,7 @@ static bool factorize(ConstraintSystem& c) noexcept {
 }
 
 // (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.
-// 2 flops (0 mul, 0 add, 2 div, 0 sqrt).
+// 2 flops: 0 mul, 0 add, 2 div.
 static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   {  // bar
     Eigen::Matrix<double, 1, 1> y = x.segment<1>(0);
@@ -338,14 +338,14 @@ static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   }
 }
 
-// (c, u) => (B u). 5 flops (3 mul, 2 add, 0 div, 0 sqrt).
+// (c, u) => (B u). 5 flops: 3 mul, 2 add.
 static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   Rows y;
   y.segment<1>(0) = c.bar.rows.J2 * u[body::bob];
   return y;
 }
 
-// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 9 flops (6 mul, 3 add, 0 div, 0 sqrt).
+// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 9 flops: 6 mul, 3 add.
 static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
                                 BodyVectors& u) noexcept {
   u[body::bob] -= scale * (c.bar.mbt_bob * lambda.segment<1>(0));
@@ -397,7 +397,7 @@ static void drift(State& s) noexcept {
 }
 
 // (c0.*.mbt_*, c.*.rows) => (g): G block by block in S's elimination order.
-// 7 flops (3 mul, 3 add, 1 div, 0 sqrt).
+// 7 flops: 3 mul, 3 add, 1 div.
 static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {
   // bar
   g.bar.D = c.bar.rows.J2 * c0.bar.mbt_bob + kNewtonShift * Eigen::Matrix<double, 1, 1>::Identity();
@@ -405,7 +405,7 @@ static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem&
 }
 
 // (g, x) => (x): x := G^-1 x by forward and backward substitution.
-// 1 flops (1 mul, 0 add, 0 div, 0 sqrt).
+// 1 flops: 1 mul, 0 add.
 static void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {
   {  // bar
     Eigen::Matrix<double, 1, 1> y = x.segment<1>(0);

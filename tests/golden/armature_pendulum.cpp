@@ -104,14 +104,14 @@ static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, Cons
 }
 
 // (c.*.rows) => (c.*.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.
-// 30 flops (0 mul, 0 add, 30 div, 0 sqrt).
+// 30 flops: 0 mul, 0 add, 30 div.
 static void constraint_directions(ConstraintSystem& c) noexcept {
   c.pin.mbt_rod = mbrt::inverse_mass_times_transpose(rod_mass, c.pin.rows.J2);
 }
 
 // (c.*.rows) => (c.*.mbt_*, c.*.L*): M^-1 B^T, then S block by block in
 // elimination order (0 fill blocks); false if a pivot is not positive.
-// 365 flops (170 mul, 150 add, 40 div, 5 sqrt).
+// 365 flops: 170 mul, 150 add, 40 div, 5 sqrt.
 static bool factorize(ConstraintSystem& c) noexcept {
   bool positive = true;
   constraint_directions(c);
@@ -122,7 +122,7 @@ static bool factorize(ConstraintSystem& c) noexcept {
 }
 
 // (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.
-// 50 flops (20 mul, 20 add, 10 div, 0 sqrt).
+// 50 flops: 20 mul, 20 add, 10 div.
 static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   {  // pin
     Eigen::Matrix<double, 5, 1> y = x.segment<5>(0);
@@ -136,14 +136,14 @@ static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   }
 }
 
-// (c, u) => (B u). 55 flops (30 mul, 25 add, 0 div, 0 sqrt).
+// (c, u) => (B u). 55 flops: 30 mul, 25 add.
 static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   Rows y;
   y.segment<5>(0) = c.pin.rows.J2 * u[body::rod];
   return y;
 }
 
-// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 66 flops (36 mul, 30 add, 0 div, 0 sqrt).
+// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 66 flops: 36 mul, 30 add.
 static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
                                 BodyVectors& u) noexcept {
   u[body::rod] -= scale * (c.pin.mbt_rod * lambda.segment<5>(0));
@@ -194,24 +194,24 @@ static void constraint_forces(const ConstraintSystem& c, const Loads& l, const R
 
 // (q) => (ha): the half angles every kernel below turns frames by.
 static void half_angles([[maybe_unused]] const Dofs& q, [[maybe_unused]] HalfAngles& ha) noexcept {
-  ha[0] = mbrt::sin_cos(0.5 * (q[0] + 1.5707963267948966));  // rod
+  ha[body::rod] = mbrt::sin_cos(0.5 * (q[body::rod] + 1.5707963267948966));  // rod
 }
 
 // (q, qd) => (qdd): the articulated-body recursion, this model's nonzero terms only.
 // 5 flops: 3 mul, 0 add, 1 fma
 static void joint_accelerations([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, [[maybe_unused]] const Dofs& qd, [[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {
-  const double t0 = ha[0].c * ha[0].c;
-  const double t1 = mbrt::mul_add(-ha[0].s, ha[0].s, t0);
+  const double t0 = ha[body::rod].c * ha[body::rod].c;
+  const double t1 = mbrt::mul_add(-ha[body::rod].s, ha[body::rod].s, t0);
   const double t2 = t1 * 9.8100000000000005;
   const double t3 = t2 * 0.85714285714285721;
-  qdd[0] = t3;
+  qdd[body::rod] = t3;
 }
 
 // (q, qd) => (s.rigid): where every body is and how it moves.
 // 12 flops: 8 mul, 2 add, 1 fma
 static void body_states([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, [[maybe_unused]] const Dofs& qd, State& s) noexcept {
-  const double t0 = ha[0].s * 0.70710678118654746;
-  const double t1 = ha[0].c * 0.70710678118654746;
+  const double t0 = ha[body::rod].s * 0.70710678118654746;
+  const double t1 = ha[body::rod].c * 0.70710678118654746;
   const double t2 = t0 + t1;
   const double t3 = t0 - t1;
   const double t4 = t3 * 2.0;
@@ -219,21 +219,21 @@ static void body_states([[maybe_unused]] const Dofs& q, [[maybe_unused]] const H
   const double t6 = mbrt::mul_add(t3, t4, (-1.0));
   const double t7 = t5 * 0.5;
   const double t8 = t6 * 0.5;
-  const double t9 = qd[0] * t8;
-  const double t10 = qd[0] * t7;
-  s.rigid[0].r[0] = -t7;
-  s.rigid[0].v[0] = t9;
-  s.rigid[0].w[0] = 0.0;
-  s.rigid[0].r[1] = 0.0;
-  s.rigid[0].v[1] = 0.0;
-  s.rigid[0].w[1] = qd[0];
-  s.rigid[0].r[2] = t8;
-  s.rigid[0].v[2] = t10;
-  s.rigid[0].w[2] = 0.0;
-  s.rigid[0].p[0] = t2;
-  s.rigid[0].p[1] = 0.0;
-  s.rigid[0].p[2] = t3;
-  s.rigid[0].p[3] = 0.0;
+  const double t9 = qd[body::rod] * t8;
+  const double t10 = qd[body::rod] * t7;
+  s.rigid[rigid::rod].r[0] = -t7;
+  s.rigid[rigid::rod].v[0] = t9;
+  s.rigid[rigid::rod].w[0] = 0.0;
+  s.rigid[rigid::rod].r[1] = 0.0;
+  s.rigid[rigid::rod].v[1] = 0.0;
+  s.rigid[rigid::rod].w[1] = qd[body::rod];
+  s.rigid[rigid::rod].r[2] = t8;
+  s.rigid[rigid::rod].v[2] = t10;
+  s.rigid[rigid::rod].w[2] = 0.0;
+  s.rigid[rigid::rod].p[0] = t2;
+  s.rigid[rigid::rod].p[1] = 0.0;
+  s.rigid[rigid::rod].p[2] = t3;
+  s.rigid[rigid::rod].p[3] = 0.0;
 }
 
 static State initial_state() noexcept {
@@ -263,7 +263,7 @@ static mbrt::Energy energy(const State& s) noexcept {
   mbrt::Energy e{0.0, l.elastic_energy};
   e.kinetic += mbrt::kinetic_energy(rod_mass, u[body::rod]);
   e.potential -= rod_mass.m * kGravity.dot(k.pose[body::rod].r);
-  e.kinetic += 0.25 * s.qd[0] * s.qd[0];  // armature of pin
+  e.kinetic += 0.25 * s.qd[body::rod] * s.qd[body::rod];  // armature of pin
   return e;
 }
 

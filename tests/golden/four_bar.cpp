@@ -123,7 +123,7 @@ static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, Cons
 }
 
 // (c.*.rows) => (c.*.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.
-// 300 flops (90 mul, 60 add, 150 div, 0 sqrt).
+// 300 flops: 90 mul, 60 add, 150 div.
 static void constraint_directions(ConstraintSystem& c) noexcept {
   c.pin_o.mbt_crank = mbrt::inverse_mass_times_transpose(crank_mass, c.pin_o.rows.J2);
   c.pin_a.mbt_crank = mbrt::inverse_mass_times_transpose(crank_mass, c.pin_a.rows.J1);
@@ -135,7 +135,7 @@ static void constraint_directions(ConstraintSystem& c) noexcept {
 
 // (c.*.rows) => (c.*.mbt_*, c.*.L*): M^-1 B^T, then S block by block in
 // elimination order (0 fill blocks); false if a pivot is not positive.
-// 4,190 flops (2,045 mul, 1,860 add, 265 div, 20 sqrt).
+// 4,190 flops: 2,045 mul, 1,860 add, 265 div, 20 sqrt.
 static bool factorize(ConstraintSystem& c) noexcept {
   bool positive = true;
   constraint_directions(c);
@@ -164,7 +164,7 @@ static bool factorize(ConstraintSystem& c) noexcept {
 }
 
 // (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.
-// 500 flops (230 mul, 230 add, 40 div, 0 sqrt).
+// 500 flops: 230 mul, 230 add, 40 div.
 static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   {  // pin_c
     Eigen::Matrix<double, 5, 1> y = x.segment<5>(15);
@@ -214,7 +214,7 @@ static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   }
 }
 
-// (c, u) => (B u). 340 flops (180 mul, 160 add, 0 div, 0 sqrt).
+// (c, u) => (B u). 340 flops: 180 mul, 160 add.
 static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   Rows y;
   y.segment<5>(0) = c.pin_o.rows.J2 * u[body::crank];
@@ -224,7 +224,7 @@ static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noex
   return y;
 }
 
-// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 396 flops (216 mul, 180 add, 0 div, 0 sqrt).
+// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 396 flops: 216 mul, 180 add.
 static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
                                 BodyVectors& u) noexcept {
   u[body::crank] -= scale * (c.pin_o.mbt_crank * lambda.segment<5>(0));
@@ -463,7 +463,7 @@ static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, Cons
 }
 
 // (c.*.rows) => (c.*.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.
-// 36 flops (0 mul, 0 add, 36 div, 0 sqrt).
+// 36 flops: 0 mul, 0 add, 36 div.
 static void constraint_directions(ConstraintSystem& c) noexcept {
   c.pin_o.mbt_crank = mbrt::inverse_mass_times_transpose(crank_mass, c.pin_o.rows.J2);
   c.pin_a.mbt_crank = mbrt::inverse_mass_times_transpose(crank_mass, c.pin_a.rows.J1);
@@ -475,7 +475,7 @@ static void constraint_directions(ConstraintSystem& c) noexcept {
 
 // (c.*.rows) => (c.*.mbt_*, c.*.L*): M^-1 B^T, then S block by block in
 // elimination order (0 fill blocks); false if a pivot is not positive.
-// 324 flops (142 mul, 122 add, 52 div, 8 sqrt).
+// 324 flops: 142 mul, 122 add, 52 div, 8 sqrt.
 static bool factorize(ConstraintSystem& c) noexcept {
   bool positive = true;
   constraint_directions(c);
@@ -504,7 +504,7 @@ static bool factorize(ConstraintSystem& c) noexcept {
 }
 
 // (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.
-// 80 flops (32 mul, 32 add, 16 div, 0 sqrt).
+// 80 flops: 32 mul, 32 add, 16 div.
 static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   {  // pin_c
     Eigen::Matrix<double, 2, 1> y = x.segment<2>(6);
@@ -554,7 +554,7 @@ static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   }
 }
 
-// (c, u) => (B u). 64 flops (36 mul, 28 add, 0 div, 0 sqrt).
+// (c, u) => (B u). 64 flops: 36 mul, 28 add.
 static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   Rows y;
   y.segment<2>(0) = c.pin_o.rows.J2 * u[body::crank];
@@ -564,7 +564,7 @@ static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noex
   return y;
 }
 
-// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 90 flops (54 mul, 36 add, 0 div, 0 sqrt).
+// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 90 flops: 54 mul, 36 add.
 static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
                                 BodyVectors& u) noexcept {
   u[body::crank] -= scale * (c.pin_o.mbt_crank * lambda.segment<2>(0));
@@ -632,7 +632,7 @@ static void drift(State& s) noexcept {
 }
 
 // (c0.*.mbt_*, c.*.rows) => (g): G block by block in S's elimination order.
-// 400 flops (212 mul, 168 add, 20 div, 0 sqrt).
+// 400 flops: 212 mul, 168 add, 20 div.
 static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {
   // pin_c
   g.pin_c.D = c.pin_c.rows.J1 * c0.pin_c.mbt_rocker + kNewtonShift * Eigen::Matrix<double, 2, 2>::Identity();
@@ -661,7 +661,7 @@ static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem&
 }
 
 // (g, x) => (x): x := G^-1 x by forward and backward substitution.
-// 72 flops (40 mul, 32 add, 0 div, 0 sqrt).
+// 72 flops: 40 mul, 32 add.
 static void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {
   x.segment<2>(4) -= g.pin_b.L_pin_c * x.segment<2>(6);
   x.segment<2>(2) -= g.pin_a.L_pin_b * x.segment<2>(4);

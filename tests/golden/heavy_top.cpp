@@ -105,14 +105,14 @@ static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, Cons
 }
 
 // (c.*.rows) => (c.*.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.
-// 18 flops (0 mul, 0 add, 18 div, 0 sqrt).
+// 18 flops: 0 mul, 0 add, 18 div.
 static void constraint_directions(ConstraintSystem& c) noexcept {
   c.tip.mbt_top = mbrt::inverse_mass_times_transpose(top_mass, c.tip.rows.J2);
 }
 
 // (c.*.rows) => (c.*.mbt_*, c.*.L*): M^-1 B^T, then S block by block in
 // elimination order (0 fill blocks); false if a pivot is not positive.
-// 134 flops (58 mul, 52 add, 21 div, 3 sqrt).
+// 134 flops: 58 mul, 52 add, 21 div, 3 sqrt.
 static bool factorize(ConstraintSystem& c) noexcept {
   bool positive = true;
   constraint_directions(c);
@@ -123,7 +123,7 @@ static bool factorize(ConstraintSystem& c) noexcept {
 }
 
 // (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.
-// 18 flops (6 mul, 6 add, 6 div, 0 sqrt).
+// 18 flops: 6 mul, 6 add, 6 div.
 static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   {  // tip
     Eigen::Matrix<double, 3, 1> y = x.segment<3>(0);
@@ -137,14 +137,14 @@ static void solve(const ConstraintSystem& c, Rows& x) noexcept {
   }
 }
 
-// (c, u) => (B u). 33 flops (18 mul, 15 add, 0 div, 0 sqrt).
+// (c, u) => (B u). 33 flops: 18 mul, 15 add.
 static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {
   Rows y;
   y.segment<3>(0) = c.tip.rows.J2 * u[body::top];
   return y;
 }
 
-// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 42 flops (24 mul, 18 add, 0 div, 0 sqrt).
+// (c, lambda) => (u): u -= scale M^-1 B^T lambda. 42 flops: 24 mul, 18 add.
 static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,
                                 BodyVectors& u) noexcept {
   u[body::top] -= scale * (c.tip.mbt_top * lambda.segment<3>(0));
@@ -196,7 +196,7 @@ static void drift(State& s) noexcept {
 }
 
 // (c0.*.mbt_*, c.*.rows) => (g): G block by block in S's elimination order.
-// 160 flops (77 mul, 71 add, 12 div, 0 sqrt).
+// 160 flops: 77 mul, 71 add, 12 div.
 static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {
   // tip
   g.tip.D = c.tip.rows.J2 * c0.tip.mbt_top + kNewtonShift * Eigen::Matrix<double, 3, 3>::Identity();
@@ -204,7 +204,7 @@ static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem&
 }
 
 // (g, x) => (x): x := G^-1 x by forward and backward substitution.
-// 15 flops (9 mul, 6 add, 0 div, 0 sqrt).
+// 15 flops: 9 mul, 6 add.
 static void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {
   {  // tip
     Eigen::Matrix<double, 3, 1> y = x.segment<3>(0);
