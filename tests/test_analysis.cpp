@@ -210,7 +210,7 @@ TEST_CASE("staggered-tree takes trees of revolute and prismatic joints; armature
                               "  - {name: pb, type: revolute, body1: a, body2: b, point: [1.5, 0, 0], axis: [0, 0, 1], "
                               "armature: 0.1}\n",
                           "t.yaml")),
-      doctest::Contains("joints.pb.armature: armature needs solver.scheme staggered-tree"), ModelError);
+      doctest::Contains("joints.pb.armature: armature needs solver.scheme midpoint-tree or staggered-tree"), ModelError);
   const Analysis a = analyse(parse_model(bodies + "joints:\n" + pin_a +
                                              "  - {name: pb, type: revolute, body1: a, body2: b, point: [1.5, 0, 0], "
                                              "axis: [0, 1, 0], armature: 0.1}\nsolver: {scheme: staggered-tree}\n",

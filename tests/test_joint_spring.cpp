@@ -1,8 +1,8 @@
 // joint_spring against closed forms: a rotor on a torsional spring, the same
 // with a damper, and a block on a linear spring along a prismatic joint, each
 // under staggered-pcst (in plane coordinates), ali3p (spatial) and
-// staggered-tree (joint coordinates); and the armature of a geared joint,
-// on the rotor and on a pendulum, under staggered-tree.
+// staggered-tree and midpoint-tree (joint coordinates); and the armature of a
+// geared joint, on the rotor and on a pendulum, under both tree schemes.
 //
 // Tolerances follow from the leading errors of second-order methods on the
 // linear oscillator x'' + 2 zeta x' + w^2 x = 0 at step h, a mode
@@ -26,13 +26,18 @@
 
 #include "armature_pendulum.hpp"
 #include "armature_rotor.hpp"
+#include "armature_pendulum_midpoint.hpp"
+#include "armature_rotor_midpoint.hpp"
 #include "damped_rotor_ali3p.hpp"
+#include "damped_rotor_midpoint.hpp"
 #include "damped_rotor_pcst.hpp"
 #include "damped_rotor_tree.hpp"
 #include "spring_slider_ali3p.hpp"
+#include "spring_slider_midpoint.hpp"
 #include "spring_slider_pcst.hpp"
 #include "spring_slider_tree.hpp"
 #include "torsion_rotor_ali3p.hpp"
+#include "torsion_rotor_midpoint.hpp"
 #include "torsion_rotor_pcst.hpp"
 #include "torsion_rotor_tree.hpp"
 
@@ -63,8 +68,13 @@ SPRING_MODEL(SliderAli3p, spring_slider_ali3p);
 SPRING_MODEL(TorsionTree, torsion_rotor_tree);
 SPRING_MODEL(DampedTree, damped_rotor_tree);
 SPRING_MODEL(SliderTree, spring_slider_tree);
+SPRING_MODEL(TorsionMidpoint, torsion_rotor_midpoint);
+SPRING_MODEL(DampedMidpoint, damped_rotor_midpoint);
+SPRING_MODEL(SliderMidpoint, spring_slider_midpoint);
 SPRING_MODEL(ArmatureRotor, armature_rotor);
 SPRING_MODEL(ArmaturePendulum, armature_pendulum);
+SPRING_MODEL(ArmatureRotorMidpoint, armature_rotor_midpoint);
+SPRING_MODEL(ArmaturePendulumMidpoint, armature_pendulum_midpoint);
 
 // The models' data (tests/models/*.yaml).
 constexpr double kRotorInertia = 0.05, kRotorStiffness = 2.0, kRotorDamping = 0.05, kRotorRest = 0.1;
@@ -152,36 +162,38 @@ void check_undamped(double omega, double amplitude, double t_end, double rest) {
 }  // namespace
 
 TEST_CASE_TEMPLATE("torsion rotor: period 2 pi sqrt(J / k), amplitude and energy kept", M, TorsionPcst, TorsionAli3p,
-                   TorsionTree) {
+                   TorsionTree, TorsionMidpoint) {
   check_undamped<M>(std::sqrt(kRotorStiffness / kRotorInertia), kRotorRest, 10.0, kRotorRest);
 }
 
 TEST_CASE_TEMPLATE("spring slider: period 2 pi sqrt(m / k) about d = rest, energy kept", M, SliderPcst, SliderAli3p,
-                   SliderTree) {
+                   SliderTree, SliderMidpoint) {
   check_undamped<M>(std::sqrt(kSliderStiffness / kSliderMass), kSliderRest, 12.0, kSliderRest);
 }
 
 // tests/models/armature_rotor.yaml: the torsion rotor with an armature of
 // 0.05 kg m^2, which the joint coordinate alone feels.
-TEST_CASE("armature: the rotor's period is 2 pi sqrt((J + armature) / k)") {
-  check_undamped<ArmatureRotor>(std::sqrt(kRotorStiffness / (kRotorInertia + 0.05)), kRotorRest, 10.0, kRotorRest);
+TEST_CASE_TEMPLATE("armature: the rotor's period is 2 pi sqrt((J + armature) / k)", M, ArmatureRotor,
+                   ArmatureRotorMidpoint) {
+  check_undamped<M>(std::sqrt(kRotorStiffness / (kRotorInertia + 0.05)), kRotorRest, 10.0, kRotorRest);
 }
 
 // tests/models/armature_pendulum.yaml: m = 2 kg, L = 1 m, armature 0.5 kg m^2,
 // pushed at 0.002 rad/s from the bottom: amplitude 0.002 / w, whose
 // finite-amplitude period correction (amplitude^2 / 16 = 3e-8) is far below
 // the tolerance.
-TEST_CASE("armature: a pendulum's period is 2 pi sqrt((m L^2 / 3 + armature) / (m g L / 2))") {
+TEST_CASE_TEMPLATE("armature: a pendulum's period is 2 pi sqrt((m L^2 / 3 + armature) / (m g L / 2))", M,
+                   ArmaturePendulum, ArmaturePendulumMidpoint) {
   const double m = 2.0, length = 1.0, g = 9.81, armature = 0.5;
   const double omega = std::sqrt(m * g * length / 2.0 / (m * length * length / 3.0 + armature));
-  check_undamped<ArmaturePendulum>(omega, 0.002 / omega, 12.0, 0.0);
+  check_undamped<M>(omega, 0.002 / omega, 12.0, 0.0);
 }
 
 // Underdamped: x = -rest exp(-zeta t) (cos(w_d t) + zeta / w_d sin(w_d t)),
 // zeta = c / (2 J): its extrema fall at t = n pi / w_d with |x| = rest
 // exp(-zeta t), its zeros pi / w_d apart.
 TEST_CASE_TEMPLATE("damped rotor: decay exp(-c t / (2 J)) at sqrt(k / J - (c / 2 J)^2)", M, DampedPcst, DampedAli3p,
-                   DampedTree) {
+                   DampedTree, DampedMidpoint) {
   const double zeta = kRotorDamping / (2.0 * kRotorInertia);
   const double omega = std::sqrt(kRotorStiffness / kRotorInertia);
   const double omega_d = std::sqrt(omega * omega - zeta * zeta);

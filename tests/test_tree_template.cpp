@@ -1,4 +1,4 @@
-// staggered-tree's step (include/mbrt/schemes/tree.hpp) on its own, without
+// The tree steps (include/mbrt/schemes/tree.hpp) on their own, without
 // the generator: a pendulum in its joint angle written by hand as the Model
 // the template takes (a point mass m on a massless rod of length L, pinned
 // at the origin about y, gravity -g z): q'' = -(g / L) sin q.
@@ -61,6 +61,11 @@ struct Pendulum {
   }
 };
 
+// midpoint-tree's step takes the same model with its own number of passes.
+struct MidpointPendulum : Pendulum {
+  static constexpr int kStages = 3;
+};
+
 State start(double angle) {
   State s;
   s.q[0] = angle;
@@ -103,6 +108,54 @@ TEST_CASE("the tree template's small-amplitude period is 2 pi sqrt(L / g), energ
   CHECK(std::abs(period_error) < w_h * w_h / 2.0);
   CHECK(drift < w_h * w_h / 2.0);
   CHECK(std::abs(s.rigid[0].r.norm() - kLength) < 1e-15);
+}
+
+// The implicit midpoint rule turns a harmonic oscillator by 2 atan(w h / 2)
+// a step (Hairer, Lubich & Wanner 2006, section I.5), so its period is long
+// by (w h)^2 / 12 where kick-drift-kick's, 2 asin(w h / 2), is short by
+// (w h)^2 / 24; the amplitude a lengthens both by a^2 / 16. It keeps
+// quadratic invariants, so the energy holds to what three fixed-point passes
+// leave, about (w h / 2)^6, and to the rounding of g z, 1e-10 of the swing's.
+TEST_CASE("the midpoint template's small-amplitude period is long by (w h)^2 / 12, energy kept to round-off") {
+  const double amplitude = 1e-3;
+  State s = start(amplitude);
+  Workspace w;
+  const double omega = std::sqrt(kG / kLength), w_h = omega * Pendulum::kStep;
+  const double e0 = energy(s);
+  double drift = 0.0, previous = s.q[0], first = -1.0, last = -1.0;
+  int crossings = 0;
+  for (int k = 0; k < 40000; ++k) {
+    REQUIRE(mbrt::schemes::tree_midpoint_step<MidpointPendulum>(s, w) == mbrt::StepStatus::ok);
+    drift = std::max(drift, std::abs(energy(s) - e0) / (e0 + kG * kLength));
+    if (previous > 0.0 && s.q[0] <= 0.0) {
+      const double t = s.t - Pendulum::kStep * s.q[0] / (s.q[0] - previous);
+      if (first < 0.0) first = t;
+      last = t;
+      ++crossings;
+    }
+    previous = s.q[0];
+  }
+  REQUIRE(crossings > 3);
+  const double period_error = (last - first) / (crossings - 1) * omega / (2.0 * M_PI) - 1.0;
+  const double expected = (1.0 + amplitude * amplitude / 16.0) * w_h / (2.0 * std::atan(0.5 * w_h)) - 1.0;
+  MESSAGE("period error " << period_error << " (expected " << expected << "), energy drift " << drift);
+  CHECK(std::abs(period_error - expected) < 0.02 * expected);
+  CHECK(drift < 1e-8);
+  CHECK(std::abs(s.rigid[0].r.norm() - kLength) < 1e-15);
+}
+
+TEST_CASE("the midpoint template restores the joint coordinates and the bodies after a non-finite step") {
+  State s = start(0.5);
+  Workspace w;
+  REQUIRE(mbrt::schemes::tree_midpoint_step<MidpointPendulum>(s, w) == mbrt::StepStatus::ok);
+  const State before = s;
+  s.qd[0] = std::numeric_limits<double>::infinity();
+  CHECK(mbrt::schemes::tree_midpoint_step<MidpointPendulum>(s, w) == mbrt::StepStatus::non_finite);
+  CHECK(s.t == before.t);
+  CHECK(s.q[0] == before.q[0]);
+  CHECK(s.qd[0] == std::numeric_limits<double>::infinity());
+  CHECK(s.qdd[0] == before.qdd[0]);
+  CHECK(s.rigid[0].r == before.rigid[0].r);
 }
 
 TEST_CASE("the tree template restores the joint coordinates and the bodies after a non-finite step") {

@@ -54,7 +54,9 @@ std::string Emitter::header() const {
     << "  double t = 0.0;\n"
     << "  std::array<mbrt::RigidState, kRigidBodies> rigid;     // by rigid::BODY\n"
     << "  std::array<mbrt::ParticleState, kParticles> particle;  // by particle::BODY\n"
-    << (tree_scheme() ? "  // The joint coordinates (rad or m from t = 0), their rates and accelerations:\n"
+    << (tree_scheme() ? std::string("  // The joint coordinates (rad or m from t = 0), their rates and accelerations")
+                            + (scheme_kind() == Scheme::midpoint_tree ? "\n  // (qdd at the last step's midpoint)" : "")
+                            + ":\n"
                         "  // what step() advances; rigid holds the bodies they put where.\n"
                         "  Dofs q, qd, qdd;\n"
                         "  // Body accelerations and constraint multipliers at the state, which\n"
@@ -134,6 +136,7 @@ void Emitter::constants(std::ostringstream& o) const {
     case Scheme::blajer:
     case Scheme::ali3p:
     case Scheme::staggered_tree:
+    case Scheme::midpoint_tree:
       break;  // in struct Model; ali3p's are per row
   }
   if (a_.gravity) o << "const mbrt::Vec3 kGravity = " << vec3(m_.gravity.value_or(Eigen::Vector3d::Zero())) << ";\n";
@@ -237,7 +240,7 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
   if (tree_scheme()) {
     o << "  double t0;\n  Dofs q0, qd0, qdd0;  // the joint coordinates at t, restored when a step fails\n"
       << "  HalfAngles half_angles;  // of s.q\n"
-      << "  Dofs rates;              // end-of-step rates, predicted\n"
+      << "  Dofs rates;              // the rates the recursion runs at\n"
       << "  detail::Kinematics k;    // where loads other than gravity need the bodies\n"
       << "  detail::Loads l;\n"
       << "};\n\n"
@@ -295,9 +298,11 @@ void Emitter::model_members(std::ostringstream& o) const {
       }
       break;
     case Scheme::staggered_tree:
+    case Scheme::midpoint_tree:
       o << "using Dofs = mbrt::models::" << m_.name << "::Dofs;\n"
         << "using HalfAngles = mbrt::models::" << m_.name << "::HalfAngles;\n"
-        << "static constexpr int kStages = " << stages() << ";  // recursions per step\n"
+        << "static constexpr int kStages = " << stages() << ";  // recursions per step"
+        << (scheme_kind() == Scheme::midpoint_tree ? " (fixed-point iterations)" : "") << "\n"
         << "static constexpr bool kExternalLoads = " << (tree_external_loads() ? "true" : "false")
         << ";  // loads other than gravity\n";
       break;
@@ -806,7 +811,7 @@ std::string Emitter::source() const {
     << " constraint rows.\n"
     << "// Scheme " << mbrt::scheme_name(scheme_kind()) << ": the step is mbrt::schemes::"
     << (scheme_kind() == Scheme::ali3p ? "ali3p_step (include/mbrt/schemes/ali3p.hpp)"
-        : tree_scheme()                ? "tree_step (include/mbrt/schemes/tree.hpp)"
+        : tree_scheme()                ? tree_step_name() + " (include/mbrt/schemes/tree.hpp)"
                                        : "staggered_step (include/mbrt/schemes/staggered.hpp)")
     << "\n// over " << (a_.planar.applies ? "planar::Model" : "Model") << ", the model's types, constants and kernels below.\n";
   o << "// Left out for this scene:";
@@ -859,7 +864,7 @@ void Emitter::public_functions(std::ostringstream& o) const {
   const std::string stepper = a_.planar.applies ? "planar::Model" : "Model";
   o << "State initial_state() noexcept { return Model::initial_state(); }\n\n"
     << "mbrt::StepStatus step(State& s, Workspace& w) noexcept {\n  return mbrt::schemes::"
-    << (scheme_kind() == Scheme::ali3p ? "ali3p_step" : tree_scheme() ? "tree_step" : "staggered_step") << "<" << stepper << ">(s, w);\n}\n\n"
+    << (scheme_kind() == Scheme::ali3p ? "ali3p_step" : tree_scheme() ? tree_step_name() : "staggered_step") << "<" << stepper << ">(s, w);\n}\n\n"
     << (tree_scheme() ? "void set_multipliers(State& s) noexcept { Model::set_multipliers(s); }\n\n" : "")
     << "mbrt::StepStatus step(State& s) noexcept {\n  Workspace w;\n  return step(s, w);\n}\n\n"
     << "mbrt::Energy energy(const State& s) noexcept { return Model::energy(s); }\n\n"

@@ -15,6 +15,7 @@ std::string Emitter::stabilization_term() const {
              "(kBaumgarteBeta * kBaumgarteBeta) * phi";
     case Scheme::blajer:
     case Scheme::staggered_tree:
+    case Scheme::midpoint_tree:
     case Scheme::ali3p: return "";
   }
   return "";
@@ -73,6 +74,7 @@ void Emitter::staggered_stages(std::ostringstream& o) const {
       break;
     case Scheme::staggered_nps:
     case Scheme::staggered_tree:
+    case Scheme::midpoint_tree:
     case Scheme::ali3p: break;
     case Scheme::baumgarte:
       o << R"(// (c, l, phi, s) => (s.lambda, accelerations): index-1 multipliers with

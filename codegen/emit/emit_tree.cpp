@@ -85,7 +85,11 @@ Inertia to_parent(const Transform& x, const Inertia& I) {
 
 }  // namespace
 
-bool Emitter::tree_scheme() const { return scheme_kind() == Scheme::staggered_tree; }
+bool Emitter::tree_scheme() const { return mbrt::joint_space(scheme_kind()); }
+
+std::string Emitter::tree_step_name() const {
+  return scheme_kind() == Scheme::midpoint_tree ? "tree_midpoint_step" : "tree_step";
+}
 
 bool Emitter::tree_external_loads() const { return !m_.forces.empty() || !m_.inputs.empty(); }
 

@@ -220,6 +220,7 @@ class Emitter {
   void staggered_stages(std::ostringstream& o) const;
   // staggered-tree (emit_tree.cpp)
   bool tree_scheme() const;
+  std::string tree_step_name() const;  // the template in include/mbrt/schemes/tree.hpp
   bool tree_external_loads() const;
   void tree_types(std::ostringstream& o) const;  // kDofs, Dofs, HalfAngles
   void tree_kernels(std::ostringstream& o) const;

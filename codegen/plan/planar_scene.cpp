@@ -176,6 +176,7 @@ PlanarPlan plan_planar(const Model& model, const Analysis& a) {
     case mbrt::Scheme::blajer: break;
     case mbrt::Scheme::staggered_nps:
     case mbrt::Scheme::staggered_tree:
+    case mbrt::Scheme::midpoint_tree:
     case mbrt::Scheme::ali3p:
       plan.refusal = "not for scheme " + std::string(mbrt::scheme_name(model.solver.scheme));
       return plan;

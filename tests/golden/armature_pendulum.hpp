@@ -109,7 +109,7 @@ struct Workspace {
   double t0;
   Dofs q0, qd0, qdd0;  // the joint coordinates at t, restored when a step fails
   HalfAngles half_angles;  // of s.q
-  Dofs rates;              // end-of-step rates, predicted
+  Dofs rates;              // the rates the recursion runs at
   detail::Kinematics k;    // where loads other than gravity need the bodies
   detail::Loads l;
 };
