@@ -4,9 +4,13 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "analysis.hpp"
+#include "generate.hpp"
 
 using namespace mbrt::codegen;
 
@@ -185,6 +189,37 @@ TEST_CASE("staggered-nps refuses more cut rows than it solves densely, naming st
   } catch (const ModelError& e) {
     CHECK(std::string(e.what()).find("at most 30; this model has 33 (use staggered-pcst)") != std::string::npos);
   }
+}
+
+TEST_CASE("a file that names no scheme gets midpoint-tree for a tree of one-dof joints, else staggered-pcst") {
+  const std::string bodies =
+      "name: t\nbodies:\n  - {name: a, mass: 1, inertia: [1, 1, 1], position: [1, 0, 0]}\n"
+      "  - {name: b, mass: 1, inertia: [1, 1, 1], position: [2, 0, 0]}\n";
+  const std::string pin_a = "  - {name: pa, type: revolute, body1: ground, body2: a, point: [0, 0, 0], axis: [0, 0, 1]}\n";
+  const Model tree = parse_model(bodies + "joints:\n" + pin_a +
+                                     "  - {name: pb, type: prismatic, body1: a, body2: b, point: [1.5, 0, 0], axis: [1, 0, 0]}\n",
+                                 "t.yaml");
+  CHECK_FALSE(tree.solver.scheme_given);
+  CHECK(default_scheme(tree) == mbrt::Scheme::midpoint_tree);
+  const Model ball = parse_model(
+      bodies + "joints:\n" + pin_a + "  - {name: ball, type: spherical, body1: a, body2: b, point: [1.5, 0, 0]}\n", "t.yaml");
+  CHECK(default_scheme(ball) == mbrt::Scheme::staggered_pcst);
+  const Model loop = parse_model(bodies + "joints:\n" + pin_a +
+                                     "  - {name: pb, type: revolute, body1: a, body2: b, point: [1.5, 0, 0], axis: [0, 0, 1]}\n"
+                                     "  - {name: loop, type: revolute, body1: ground, body2: b, point: [2, 0, 0], axis: [0, 0, 1]}\n",
+                                 "t.yaml");
+  CHECK(default_scheme(loop) == mbrt::Scheme::staggered_pcst);
+  const Model named = parse_model(bodies + "joints:\n" + pin_a + "solver: {scheme: staggered-pcst}\n", "t.yaml");
+  CHECK(named.solver.scheme_given);
+  // gen: the default where the file names none, --scheme over it.
+  const std::string path = (std::filesystem::temp_directory_path() / "mbrt_default_scheme_tree.yaml").string();
+  std::ofstream(path) << bodies << "joints:\n"
+                      << pin_a << "  - {name: pb, type: revolute, body1: a, body2: b, point: [1.5, 0, 0], axis: [0, 1, 0]}\n";
+  CHECK(generate(path, {}).model.solver.scheme == mbrt::Scheme::midpoint_tree);
+  GenerateOptions pcst;
+  pcst.scheme = "staggered-pcst";
+  CHECK(generate(path, pcst).model.solver.scheme == mbrt::Scheme::staggered_pcst);
+  std::remove(path.c_str());
 }
 
 TEST_CASE("staggered-tree takes trees of revolute and prismatic joints; armature needs it") {

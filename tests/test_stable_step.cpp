@@ -97,6 +97,8 @@ TEST_CASE("staggered-tree warns of its energy on trees of several links above 1e
   arm.solver.step = 1e-3;
   arm.solver.scheme = mbrt::Scheme::staggered_pcst;
   CHECK(mbrt::codegen::tree_energy_warning(arm).empty());
+  arm.solver.scheme = mbrt::Scheme::midpoint_tree;
+  CHECK(mbrt::codegen::tree_energy_warning(arm).empty());
   // One revolute joint: M is constant and kick-drift-kick is the Stormer-Verlet step.
   mbrt::codegen::Model rod = parse_model(kRodPendulum, "rod.yaml");
   rod.solver.scheme = mbrt::Scheme::staggered_tree;

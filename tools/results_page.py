@@ -152,21 +152,22 @@ def work_precision(out):
 
 
 def work_precision_trees(out):
-    """timing/work_precision's run of staggered-tree on the trees, against staggered-pcst and the peers."""
-    paragraph(out, "### staggered-tree on the trees")
+    """timing/work_precision's run of the tree schemes on the trees, against staggered-pcst and the peers."""
+    paragraph(out, "### midpoint-tree and staggered-tree on the trees")
     data = measured(out, "work_precision_trees", "timing/work_precision 3 arm_3,chain_10 "
-                    "staggered-pcst,staggered-tree work_precision_trees")
+                    "staggered-pcst,staggered-tree,midpoint-tree work_precision_trees")
     if data is None:
         return
     paragraph(out,
         "The problems whose models are trees of revolute joints (the 3-link arm and the 10-link chain), "
-        "in staggered-tree and staggered-pcst and the peers' integrators, in one run of its own (so the "
-        "ratios compare runs of that process only); columns as above. Full table: "
+        "in midpoint-tree, staggered-tree and staggered-pcst and the peers' integrators, in one run of its "
+        "own (so the ratios compare runs of that process only); columns as above. Full table: "
         "[work_precision_trees.txt](%swork_precision_trees.txt)." % LINK)
     problems = curve_table(out, data)
+    against_pcst(out, data, "midpoint-tree")
     against_pcst(out, data, "staggered-tree")
     for p in problems:
-        image(out, "work_precision_trees_%s.png" % p, p + " work-precision, staggered-tree")
+        image(out, "work_precision_trees_%s.png" % p, p + " work-precision, the tree schemes")
 
 
 def curve_table(out, data):

@@ -25,6 +25,7 @@ void apply_overrides(Model& model, const GenerateOptions& options) {
       throw ModelError(cli, "--scheme", "expected one of: " + names + ", got '" + *options.scheme + "'");
     }
     model.solver.scheme = *scheme;
+    model.solver.scheme_given = true;
   }
   if (options.name) {
     const std::string& n = *options.name;
@@ -76,6 +77,7 @@ void check_initial_state(const Model& model, const Analysis& analysis) {
 Generated generate(const std::string& model_path, const GenerateOptions& options) {
   Generated g{load_model(model_path), {}, {}, {}};
   apply_overrides(g.model, options);
+  if (!g.model.solver.scheme_given) g.model.solver.scheme = default_scheme(g.model);
   g.analysis = analyse(g.model, options.specialize);
   if (options.project_initial) project_initial_state(g.model, g.analysis);
   check_initial_state(g.model, g.analysis);

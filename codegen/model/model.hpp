@@ -154,6 +154,7 @@ struct Ali3pSettings {
 
 struct SolverSettings {
   mbrt::Scheme scheme = mbrt::Scheme::staggered_pcst;
+  bool scheme_given = false;  // by the file or --scheme; else default_scheme() decides
   double step = 1.0e-3;
   int euler_updates = 2;
   // staggered-pcst: regularization of S relative to its largest diagonal

@@ -751,7 +751,10 @@ SolverSettings parse_solver(const Value& v) {
   SolverSettings solver;
   if (v.node.IsNull()) return solver;  // "solver:" with nothing under it: defaults
   const Section s(v, kSolverKeys);
-  if (auto x = s.find("scheme")) solver.scheme = *mbrt::scheme_from_name(read_choice(*x, kSchemes));
+  if (auto x = s.find("scheme")) {
+    solver.scheme = *mbrt::scheme_from_name(read_choice(*x, kSchemes));
+    solver.scheme_given = true;
+  }
   if (auto x = s.find("step")) solver.step = read_positive(*x);
   if (auto x = s.find("euler_updates")) solver.euler_updates = read_integer_at_least(*x, 1);
   if (auto x = s.find("penalty")) solver.penalty = read_non_negative(*x);

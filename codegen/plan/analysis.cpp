@@ -246,6 +246,60 @@ std::vector<Skipped> skipped_code(const Model& model, const Analysis& a) {
   return out;
 }
 
+// The joints' and drivers' constraint blocks, rows numbered in file order.
+std::vector<ConstraintBlock> constraint_blocks(const Model& model) {
+  std::vector<ConstraintBlock> blocks;
+  int rows = 0;
+  for (size_t i = 0; i < model.joints.size(); ++i) {
+    const Joint& j = model.joints[i];
+    const std::string key = "joints[" + std::to_string(i) + "]";
+    const JointTypeRow& type = type_row(j.type);
+    ConstraintBlock block{.name = j.name,
+                          .where = j.where,
+                          .source = ConstraintSource::joint,
+                          .joint_type = j.type,
+                          .kernel = type.kernel,
+                          .body1 = j.body1,
+                          .body2 = j.body2,
+                          .rows = type.rows,
+                          .first_row = rows,
+                          .frame = joint_frame(model, j, key),
+                          .holonomic_rows = type.holonomic_rows};
+    rows += block.rows;
+    blocks.push_back(block);
+  }
+  for (size_t i = 0; i < model.drivers.size(); ++i) {
+    const Driver& d = model.drivers[i];
+    const std::string key = "drivers[" + std::to_string(i) + "]";
+    const DriverTypeRow& type = type_row(d.type);
+    ConstraintBlock block{.name = d.name,
+                          .where = d.where,
+                          .source = ConstraintSource::driver,
+                          .driver_type = d.type,
+                          .kernel = type.kernel,
+                          .body1 = d.body1,
+                          .body2 = d.body2,
+                          .rows = type.rows,
+                          .first_row = rows,
+                          .frame = {},
+                          .function = &d.function,
+                          .holonomic_rows = type.rows};
+    if (d.type == DriverType::distance) {
+      block.frame.s1 = body_point(model, d.body1, d.point1, d.where, key + ".point1");
+      block.frame.s2 = body_point(model, d.body2, d.point2, d.where, key + ".point2");
+    } else {
+      // The driven joint's own frame: angle and slide are measured from t = 0.
+      const size_t joint = static_cast<size_t>(d.joint);
+      block.body1 = model.joints[joint].body1;
+      block.body2 = model.joints[joint].body2;
+      block.frame = blocks[joint].frame;
+    }
+    rows += block.rows;
+    blocks.push_back(block);
+  }
+  return blocks;
+}
+
 StepPlan plan_step(const Model& model, const Analysis& a) {
   StepPlan p;
   p.scheme = model.solver.scheme;
@@ -269,6 +323,11 @@ StepPlan plan_step(const Model& model, const Analysis& a) {
 
 }  // namespace
 
+mbrt::Scheme default_scheme(const Model& model) {
+  return plan_tree_frames(model, constraint_blocks(model)).refusal.empty() ? mbrt::Scheme::midpoint_tree
+                                                                          : mbrt::Scheme::staggered_pcst;
+}
+
 Analysis analyse(const Model& model, const Specializations& specialize) {
   Analysis a;
   a.specialize = specialize;
@@ -288,53 +347,10 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     }
     a.bodies.push_back(plan);
   }
-  for (size_t i = 0; i < model.joints.size(); ++i) {
-    const Joint& j = model.joints[i];
-    const std::string key = "joints[" + std::to_string(i) + "]";
-    const JointTypeRow& type = type_row(j.type);
-    ConstraintBlock block{.name = j.name,
-                          .where = j.where,
-                          .source = ConstraintSource::joint,
-                          .joint_type = j.type,
-                          .kernel = type.kernel,
-                          .body1 = j.body1,
-                          .body2 = j.body2,
-                          .rows = type.rows,
-                          .first_row = a.constraint_rows,
-                          .frame = joint_frame(model, j, key),
-                          .holonomic_rows = type.holonomic_rows};
+  a.constraints = constraint_blocks(model);
+  for (const ConstraintBlock& block : a.constraints) {
     a.nonholonomic = a.nonholonomic || block.holonomic_rows < block.rows;
     a.constraint_rows += block.rows;
-    a.constraints.push_back(block);
-  }
-  for (size_t i = 0; i < model.drivers.size(); ++i) {
-    const Driver& d = model.drivers[i];
-    const std::string key = "drivers[" + std::to_string(i) + "]";
-    const DriverTypeRow& type = type_row(d.type);
-    ConstraintBlock block{.name = d.name,
-                          .where = d.where,
-                          .source = ConstraintSource::driver,
-                          .driver_type = d.type,
-                          .kernel = type.kernel,
-                          .body1 = d.body1,
-                          .body2 = d.body2,
-                          .rows = type.rows,
-                          .first_row = a.constraint_rows,
-                          .frame = {},
-                          .function = &d.function,
-                          .holonomic_rows = type.rows};
-    if (d.type == DriverType::distance) {
-      block.frame.s1 = body_point(model, d.body1, d.point1, d.where, key + ".point1");
-      block.frame.s2 = body_point(model, d.body2, d.point2, d.where, key + ".point2");
-    } else {
-      // The driven joint's own frame: angle and slide are measured from t = 0.
-      const size_t joint = static_cast<size_t>(d.joint);
-      block.body1 = model.joints[joint].body1;
-      block.body2 = model.joints[joint].body2;
-      block.frame = a.constraints[joint].frame;
-    }
-    a.constraint_rows += block.rows;
-    a.constraints.push_back(block);
   }
   a.rheonomic = !model.drivers.empty() || !specialize.no_drivers;
   for (size_t i = 0; i < model.forces.size(); ++i) {

@@ -218,7 +218,7 @@ std::string tree_energy_warning(const Model& m) {
     << " s: its kick-drift-kick in joint coordinates is not symplectic, so on trees of several links the energy"
     << " wanders: over 20 s at 1e-3 s it drifted 3 to 52 % on a 7-link arm and 28 % on a 32-link chain, and a"
     << " 30-link humanoid went non-finite after 17 s; at " << format(kTreeEnergyStep)
-    << " s and below it holds 1 % (docs/staggered-tree.md). midpoint-tree holds these within 1.5 % at 1e-3 s";
+    << " s and below it holds 1 % (docs/staggered-tree.md). midpoint-tree (the default for trees) holds them within 0.6 % over 20 s at 1e-3 s";
   return o.str();
 }
 
