@@ -204,7 +204,8 @@ std::string stable_step_warning(const Model& m, const StableStep& s) {
       << " rad/s and the explicit stage needs h * omega < 2";
   }
   o << " (docs/stability.md)";
-  if (m.solver.scheme != mbrt::Scheme::staggered_pcst && rotation) o << "; staggered-pcst allows about 0.7 rad per step";
+  const double pcst = rotation_per_step(mbrt::Scheme::staggered_pcst);
+  if (rotation && s.rotation_per_step < pcst) o << "; staggered-pcst allows about " << format(pcst) << " rad per step";
   return o.str();
 }
 
