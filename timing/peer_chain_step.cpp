@@ -24,6 +24,9 @@
 #ifdef MBRT_WITH_SIMBODY
 #include "simbody_engine.hpp"
 #endif
+#ifdef MBRT_WITH_DART
+#include "dart_engine.hpp"
+#endif
 
 namespace {
 
@@ -46,6 +49,11 @@ std::vector<Peer> peers() {
   for (const std::string& m : timing::simbody_methods()) out.push_back({"simbody-" + m, m, timing::simbody_engine});
 #else
   std::fprintf(stderr, "Simbody not built in (apt-get install libsimbody-dev, then reconfigure)\n");
+#endif
+#ifdef MBRT_WITH_DART
+  for (const std::string& m : timing::dart_methods()) out.push_back({"dart-" + m, m, timing::dart_engine});
+#else
+  std::fprintf(stderr, "DART not built in (apt-get install libdart-dev, then reconfigure)\n");
 #endif
   return out;
 }

@@ -1,5 +1,5 @@
 // Run time against error for every mbrt scheme and step size, and for the
-// peers' fixed-step integrators (MuJoCo, Simbody, where found), on the same
+// peers' fixed-step integrators (MuJoCo, Simbody, DART, where found), on the same
 // mechanisms against independent references (problems.hpp). All runs are
 // measured alternately in one process, several rounds, the fastest round of
 // each run kept, so machine noise hits every engine alike. The peers run
@@ -24,6 +24,9 @@
 #ifdef MBRT_WITH_SIMBODY
 #include "simbody_engine.hpp"
 #endif
+#ifdef MBRT_WITH_DART
+#include "dart_engine.hpp"
+#endif
 
 namespace {
 
@@ -46,9 +49,11 @@ const std::set<std::string>& built_problems() {
   return names;
 }
 
-void add_peer(std::vector<Run>& runs, const std::vector<std::string>& methods, PeerRun run) {
+// A peer on the problems built that it builds too (builds: null for all).
+void add_peer(std::vector<Run>& runs, const std::vector<std::string>& methods, PeerRun run,
+              bool (*builds)(const timing::Problem&) = nullptr) {
   for (const timing::Problem& p : timing::problems())
-    if (built_problems().count(p.name))
+    if (built_problems().count(p.name) && (!builds || builds(p)))
       for (const std::string& method : methods)
         for (double h : timing::peer_steps(p)) runs.push_back([&p, method, h, run] { return run(p, method, h); });
 }
@@ -64,6 +69,9 @@ std::vector<Run> all_runs() {
 #endif
 #ifdef MBRT_WITH_SIMBODY
   add_peer(runs, timing::simbody_methods(), timing::run_simbody);
+#endif
+#ifdef MBRT_WITH_DART
+  add_peer(runs, timing::dart_methods(), timing::run_dart, timing::dart_builds);
 #endif
   return runs;
 }

@@ -118,7 +118,7 @@ def growth_slopes(data):
 
 
 def work_precision(out):
-    paragraph(out, "## Peers: work-precision against MuJoCo and Simbody")
+    paragraph(out, "## Peers: work-precision against MuJoCo, Simbody and DART")
     data = measured(out, "work_precision", "timing/work_precision")
     if data is None:
         return
@@ -137,8 +137,10 @@ def work_precision(out):
         "compared curve's range have no ratio. Full table: [work_precision.txt](%swork_precision.txt)." % LINK)
     paragraph(out,
         "Builds: mbrt's steps as `mbrt sim` compiles them (-O3, AVX2 and FMA where the CPU has them); "
-        "MuJoCo 2.2.2 and Simbody 3.7 are Debian's libraries. Models: the same masses, inertias and "
-        "initial states in each engine (timing/peers/); MuJoCo closes loops with `connect` equality "
+        "MuJoCo 2.2.2, Simbody 3.7 and DART 6.12 are Debian's libraries. Models: the same masses, inertias and "
+        "initial states in each engine (timing/peers/); DART (World::step, its semi-implicit Euler, on the "
+        "articulated-body forward dynamics in joint coordinates) runs the trees only (A01, the arm, the "
+        "chain), not the loops or the heavy top; MuJoCo closes loops with `connect` equality "
         "constraints as stiff as it allows (time constant clamped to two steps, impedance 0.9999), "
         "Simbody with ball constraints projected to a 1e-10 tolerance after each step; Andrews' spring is "
         "a MuJoCo spatial tendon and a Simbody two-point spring, its torque a MuJoCo actuator's constant "
@@ -291,7 +293,7 @@ def stability(out):
     if data is not None:
         paragraph(out,
             "The planar chain of tools/make_chain.py at h = 1e-4 s in mbrt's schemes and, beside them, "
-            "MuJoCo's and Simbody's fixed-step integrators on the same chain (timing/peer_chain_step.cpp; "
+            "MuJoCo's, Simbody's and DART's fixed-step integrators on the same chain (timing/peer_chain_step.cpp; "
             "`ENGINE-METHOD`, in joint coordinates, so no constraint rows; staggered-tree steps the joint "
             "angles too). Instructions per step by callgrind "
             "from runs of K and 2K steps (mbrt K = 200, peers K = 20); ns per step over 20000 steps for mbrt, "
