@@ -35,6 +35,11 @@ double max_position_difference(A a, B b, int steps, bool (*step_a)(A&), bool (*s
 
 #define OK_STEP(ns) [](mbrt::models::ns::State& s) { return mbrt::models::ns::step(s) == mbrt::StepStatus::ok; }
 
+// Over 0.5 s at 1 kHz, from each model's initial state.
+#define DISTANCE_OVER_HALF_A_SECOND(ns, reference)                                                   \
+  max_position_difference(mbrt::models::ns::initial_state(), mbrt::models::reference::initial_state(), 500, \
+                          +OK_STEP(ns), +OK_STEP(reference))
+
 }  // namespace
 
 // Both schemes are second order; at h = 1e-3 over 0.5 s each is within
@@ -43,15 +48,9 @@ double max_position_difference(A a, B b, int steps, bool (*step_a)(A&), bool (*s
 // centimetres. The humanoid-shaped tree branches, so its second children take
 // the general transform rather than Craig's.
 TEST_CASE("the tree step follows the arm, the chain and a branched tree that staggered-pcst steps in absolute coordinates") {
-  const double arm = max_position_difference(mbrt::models::arm_7_tree::initial_state(),
-                                             mbrt::models::arm_7::initial_state(), 500, +OK_STEP(arm_7_tree),
-                                             +OK_STEP(arm_7));
-  const double chain = max_position_difference(mbrt::models::spatial_chain_16_revolute_tree::initial_state(),
-                                               mbrt::models::spatial_chain_16_revolute::initial_state(), 500,
-                                               +OK_STEP(spatial_chain_16_revolute_tree), +OK_STEP(spatial_chain_16_revolute));
-  const double tree = max_position_difference(mbrt::models::humanoid_30_tree::initial_state(),
-                                              mbrt::models::humanoid_30::initial_state(), 500,
-                                              +OK_STEP(humanoid_30_tree), +OK_STEP(humanoid_30));
+  const double arm = DISTANCE_OVER_HALF_A_SECOND(arm_7_tree, arm_7);
+  const double chain = DISTANCE_OVER_HALF_A_SECOND(spatial_chain_16_revolute_tree, spatial_chain_16_revolute);
+  const double tree = DISTANCE_OVER_HALF_A_SECOND(humanoid_30_tree, humanoid_30);
   MESSAGE("largest COM distance over 0.5 s: arm " << arm << " m, chain " << chain << " m, humanoid " << tree << " m");
   CHECK(arm < 1e-4);
   CHECK(chain < 1e-4);
@@ -61,16 +60,9 @@ TEST_CASE("the tree step follows the arm, the chain and a branched tree that sta
 // midpoint-tree's error at h = 1e-3 after 0.5 s is about 1e-5 m on these
 // models (docs/staggered-tree.md), staggered-pcst's 3e-6 to 5e-6 m.
 TEST_CASE("the midpoint tree step follows the arm, the chain and the branched tree that staggered-pcst steps") {
-  const double arm = max_position_difference(mbrt::models::arm_7_midpoint::initial_state(),
-                                             mbrt::models::arm_7::initial_state(), 500, +OK_STEP(arm_7_midpoint),
-                                             +OK_STEP(arm_7));
-  const double chain = max_position_difference(mbrt::models::spatial_chain_16_revolute_midpoint::initial_state(),
-                                               mbrt::models::spatial_chain_16_revolute::initial_state(), 500,
-                                               +OK_STEP(spatial_chain_16_revolute_midpoint),
-                                               +OK_STEP(spatial_chain_16_revolute));
-  const double tree = max_position_difference(mbrt::models::humanoid_30_midpoint::initial_state(),
-                                              mbrt::models::humanoid_30::initial_state(), 500,
-                                              +OK_STEP(humanoid_30_midpoint), +OK_STEP(humanoid_30));
+  const double arm = DISTANCE_OVER_HALF_A_SECOND(arm_7_midpoint, arm_7);
+  const double chain = DISTANCE_OVER_HALF_A_SECOND(spatial_chain_16_revolute_midpoint, spatial_chain_16_revolute);
+  const double tree = DISTANCE_OVER_HALF_A_SECOND(humanoid_30_midpoint, humanoid_30);
   MESSAGE("largest COM distance over 0.5 s: arm " << arm << " m, chain " << chain << " m, humanoid " << tree << " m");
   CHECK(arm < 3e-5);
   CHECK(chain < 3e-5);

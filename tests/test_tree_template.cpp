@@ -80,18 +80,27 @@ double energy(const State& s) {  // per unit mass
   return 0.5 * s.rigid[0].v.squaredNorm() + kG * s.rigid[0].r.z();
 }
 
-}  // namespace
+// A step of the template on the pendulum.
+using Step = mbrt::StepStatus (*)(State&, Workspace&) noexcept;
 
-TEST_CASE("the tree template's small-amplitude period is 2 pi sqrt(L / g), energy within (w h)^2 / 2") {
-  State s = start(1e-3);
+// Swings from rest at an angle: the period from the downward zero crossings,
+// the largest energy change relative to the swing's (e0 + g L is its kinetic
+// energy at the bottom) and the last state.
+struct Swing {
+  double period_error = 0.0;  // relative to 2 pi sqrt(L / g)
+  double drift = 0.0;
+  State end;
+};
+
+Swing swing(Step step, double amplitude, int steps) {
+  State s = start(amplitude);
   Workspace w;
-  const double omega = std::sqrt(kG / kLength), w_h = omega * Pendulum::kStep;
+  const double omega = std::sqrt(kG / kLength);
   const double e0 = energy(s);
   double drift = 0.0, previous = s.q[0], first = -1.0, last = -1.0;
   int crossings = 0;
-  for (int k = 0; k < 20000; ++k) {
-    REQUIRE(mbrt::schemes::tree_step<Pendulum>(s, w) == mbrt::StepStatus::ok);
-    // Energy relative to the swing's (e0 + g L is its kinetic energy at the bottom).
+  for (int k = 0; k < steps; ++k) {
+    REQUIRE(step(s, w) == mbrt::StepStatus::ok);
     drift = std::max(drift, std::abs(energy(s) - e0) / (e0 + kG * kLength));
     if (previous > 0.0 && s.q[0] <= 0.0) {
       const double t = s.t - Pendulum::kStep * s.q[0] / (s.q[0] - previous);
@@ -102,12 +111,35 @@ TEST_CASE("the tree template's small-amplitude period is 2 pi sqrt(L / g), energ
     previous = s.q[0];
   }
   REQUIRE(crossings > 3);
-  const double period = (last - first) / (crossings - 1);
-  const double period_error = period * omega / (2.0 * M_PI) - 1.0;
-  MESSAGE("period error " << period_error << ", energy drift " << drift << " (w h = " << w_h << ")");
-  CHECK(std::abs(period_error) < w_h * w_h / 2.0);
-  CHECK(drift < w_h * w_h / 2.0);
-  CHECK(std::abs(s.rigid[0].r.norm() - kLength) < 1e-15);
+  return {(last - first) / (crossings - 1) * omega / (2.0 * M_PI) - 1.0, drift, s};
+}
+
+// One good step, then one from a state with an infinite entry in `poisoned`:
+// the step must report it and leave the state as it was.
+void check_restored(Step step, Dofs State::*poisoned) {
+  State s = start(0.5);
+  Workspace w;
+  REQUIRE(step(s, w) == mbrt::StepStatus::ok);
+  (s.*poisoned)[0] = std::numeric_limits<double>::infinity();
+  const State before = s;
+  CHECK(step(s, w) == mbrt::StepStatus::non_finite);
+  CHECK(s.t == before.t);
+  CHECK(s.q[0] == before.q[0]);
+  CHECK(s.qd[0] == before.qd[0]);
+  CHECK(s.qdd[0] == before.qdd[0]);
+  CHECK(s.rigid[0].r == before.rigid[0].r);
+}
+
+const double kOmegaH = std::sqrt(kG / kLength) * Pendulum::kStep;
+
+}  // namespace
+
+TEST_CASE("the tree template's small-amplitude period is 2 pi sqrt(L / g), energy within (w h)^2 / 2") {
+  const Swing r = swing(&mbrt::schemes::tree_step<Pendulum>, 1e-3, 20000);
+  MESSAGE("period error " << r.period_error << ", energy drift " << r.drift << " (w h = " << kOmegaH << ")");
+  CHECK(std::abs(r.period_error) < kOmegaH * kOmegaH / 2.0);
+  CHECK(r.drift < kOmegaH * kOmegaH / 2.0);
+  CHECK(std::abs(r.end.rigid[0].r.norm() - kLength) < 1e-15);
 }
 
 // The implicit midpoint rule turns a harmonic oscillator by 2 atan(w h / 2)
@@ -118,55 +150,18 @@ TEST_CASE("the tree template's small-amplitude period is 2 pi sqrt(L / g), energ
 // leave, about (w h / 2)^6, and to the rounding of g z, 1e-10 of the swing's.
 TEST_CASE("the midpoint template's small-amplitude period is long by (w h)^2 / 12, energy kept to round-off") {
   const double amplitude = 1e-3;
-  State s = start(amplitude);
-  Workspace w;
-  const double omega = std::sqrt(kG / kLength), w_h = omega * Pendulum::kStep;
-  const double e0 = energy(s);
-  double drift = 0.0, previous = s.q[0], first = -1.0, last = -1.0;
-  int crossings = 0;
-  for (int k = 0; k < 40000; ++k) {
-    REQUIRE(mbrt::schemes::tree_midpoint_step<MidpointPendulum>(s, w) == mbrt::StepStatus::ok);
-    drift = std::max(drift, std::abs(energy(s) - e0) / (e0 + kG * kLength));
-    if (previous > 0.0 && s.q[0] <= 0.0) {
-      const double t = s.t - Pendulum::kStep * s.q[0] / (s.q[0] - previous);
-      if (first < 0.0) first = t;
-      last = t;
-      ++crossings;
-    }
-    previous = s.q[0];
-  }
-  REQUIRE(crossings > 3);
-  const double period_error = (last - first) / (crossings - 1) * omega / (2.0 * M_PI) - 1.0;
-  const double expected = (1.0 + amplitude * amplitude / 16.0) * w_h / (2.0 * std::atan(0.5 * w_h)) - 1.0;
-  MESSAGE("period error " << period_error << " (expected " << expected << "), energy drift " << drift);
-  CHECK(std::abs(period_error - expected) < 0.02 * expected);
-  CHECK(drift < 1e-8);
-  CHECK(std::abs(s.rigid[0].r.norm() - kLength) < 1e-15);
+  const Swing r = swing(&mbrt::schemes::tree_midpoint_step<MidpointPendulum>, amplitude, 40000);
+  const double expected = (1.0 + amplitude * amplitude / 16.0) * kOmegaH / (2.0 * std::atan(0.5 * kOmegaH)) - 1.0;
+  MESSAGE("period error " << r.period_error << " (expected " << expected << "), energy drift " << r.drift);
+  CHECK(std::abs(r.period_error - expected) < 0.02 * expected);
+  CHECK(r.drift < 1e-8);
+  CHECK(std::abs(r.end.rigid[0].r.norm() - kLength) < 1e-15);
 }
 
 TEST_CASE("the midpoint template restores the joint coordinates and the bodies after a non-finite step") {
-  State s = start(0.5);
-  Workspace w;
-  REQUIRE(mbrt::schemes::tree_midpoint_step<MidpointPendulum>(s, w) == mbrt::StepStatus::ok);
-  const State before = s;
-  s.qd[0] = std::numeric_limits<double>::infinity();
-  CHECK(mbrt::schemes::tree_midpoint_step<MidpointPendulum>(s, w) == mbrt::StepStatus::non_finite);
-  CHECK(s.t == before.t);
-  CHECK(s.q[0] == before.q[0]);
-  CHECK(s.qd[0] == std::numeric_limits<double>::infinity());
-  CHECK(s.qdd[0] == before.qdd[0]);
-  CHECK(s.rigid[0].r == before.rigid[0].r);
+  check_restored(&mbrt::schemes::tree_midpoint_step<MidpointPendulum>, &State::qd);
 }
 
 TEST_CASE("the tree template restores the joint coordinates and the bodies after a non-finite step") {
-  State s = start(0.5);
-  Workspace w;
-  REQUIRE(mbrt::schemes::tree_step<Pendulum>(s, w) == mbrt::StepStatus::ok);
-  const State before = s;
-  s.qdd[0] = std::numeric_limits<double>::infinity();
-  CHECK(mbrt::schemes::tree_step<Pendulum>(s, w) == mbrt::StepStatus::non_finite);
-  CHECK(s.t == before.t);
-  CHECK(s.q[0] == before.q[0]);
-  CHECK(s.qd[0] == before.qd[0]);
-  CHECK(s.rigid[0].r == before.rigid[0].r);
+  check_restored(&mbrt::schemes::tree_step<Pendulum>, &State::qdd);
 }

@@ -38,8 +38,17 @@ bool tree_state_finite(const State& s) noexcept {
   return std::isfinite(sum);
 }
 
+// A step's first act: save what tree_step_end restores.
+template <class M>
+void tree_step_begin(const typename M::State& s, typename M::Workspace& w) noexcept {
+  w.t0 = s.t;
+  w.q0 = s.q;
+  w.qd0 = s.qd;
+  w.qdd0 = s.qdd;
+}
+
 // A step's last act: keep the new state if it is finite, else restore the
-// one the step began from (saved in w).
+// one the step began from (saved in w by tree_step_begin).
 template <class M>
 StepStatus tree_step_end(typename M::State& s, typename M::Workspace& w) noexcept {
   if (tree_state_finite(s)) return StepStatus::ok;
@@ -57,10 +66,7 @@ StepStatus tree_step_end(typename M::State& s, typename M::Workspace& w) noexcep
 template <class M>
 StepStatus tree_step(typename M::State& s, typename M::Workspace& w) noexcept {
   constexpr double h = M::kStep;
-  w.t0 = s.t;
-  w.q0 = s.q;
-  w.qd0 = s.qd;
-  w.qdd0 = s.qdd;
+  tree_step_begin<M>(s, w);
   // Explicit stage: half kick and drift of the joint coordinates.
   for (std::size_t i = 0; i < s.q.size(); ++i) {
     s.qd[i] += (0.5 * h) * s.qdd[i];
@@ -101,10 +107,7 @@ StepStatus tree_step(typename M::State& s, typename M::Workspace& w) noexcept {
 template <class M>
 StepStatus tree_midpoint_step(typename M::State& s, typename M::Workspace& w) noexcept {
   constexpr double h = M::kStep;
-  w.t0 = s.t;
-  w.q0 = s.q;
-  w.qd0 = s.qd;
-  w.qdd0 = s.qdd;
+  tree_step_begin<M>(s, w);
   s.t = w.t0 + 0.5 * h;
   for (int iteration = 0; iteration < M::kStages; ++iteration) {
     for (std::size_t i = 0; i < s.q.size(); ++i) {
