@@ -1,6 +1,6 @@
-// One work-precision run of any engine: steps to each reference time, timing
-// and counting heap allocations of the stepping only, and keeps the largest
-// error of the observed point. An engine is a type with
+// One work-precision run of any engine: steps to each reference time it
+// lands on, timing and counting heap allocations of the stepping only, and
+// keeps the largest error of the observed point. An engine is a type with
 //   bool step()            one fixed step; false if the engine failed
 //   double time() const
 //   mbrt::Vec3 observed()  the problem's observed point, world coordinates
@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "allocation_counter.hpp"
@@ -27,10 +28,18 @@ struct Measurement {
   bool failed = false;
 };
 
+// Whether a run at step h lands on time t (a whole number of steps).
+inline bool on_step(double t, double h) { return std::abs(t / h - std::round(t / h)) < 1e-6; }
+
+// Compared: the reference samples the run's steps land on, so every engine
+// is compared at the times it reached, never one a part of a step away.
 template <class Engine>
 Measurement measure(const Problem& p, Engine& engine, Measurement m) {
   using Clock = std::chrono::steady_clock;
+  long compared = 0;
   for (const Observation& o : p.reference) {
+    if (!on_step(o.t, m.h)) continue;
+    ++compared;
     long allocations = 0;
     const auto start = Clock::now();
     {
@@ -50,6 +59,7 @@ Measurement measure(const Problem& p, Engine& engine, Measurement m) {
     const double e = observation_error(o, engine.observed());
     m.error = std::max(m.error, std::isfinite(e) ? e : std::numeric_limits<double>::infinity());
   }
+  if (compared == 0) throw std::logic_error(p.name + ": no reference sample lies on a step of " + std::to_string(m.h));
   return m;
 }
 

@@ -84,7 +84,7 @@ int run(int argc, char** argv) {
   }
   // Observed: the tip of the last link, (N, 0, 0) at rest.
   const timing::Problem chain{"chain_" + std::to_string(n), timing::Mechanism::chain, n,
-                              "link_" + std::to_string(n - 1), {double(n), 0, 0}, h, {}};
+                              "link_" + std::to_string(n - 1), {double(n), 0, 0}, h, {}, {}};
   const std::unique_ptr<timing::PeerEngine> engine = peer->make(chain, peer->method, h);
 
   using Clock = std::chrono::steady_clock;

@@ -12,7 +12,9 @@
 
 namespace timing {
 
-enum class Mechanism { a01_pendulum, heavy_top, n_four_bar, chain, andrews };
+// model_file: a tree of an mbrt model file, which the peers build from the
+// file itself (peers/tree_peer.hpp); the others each peer builds by hand.
+enum class Mechanism { a01_pendulum, heavy_top, n_four_bar, chain, andrews, model_file };
 
 // The observed point at time t, compared on the axes where mask is 1.
 struct Observation {
@@ -29,6 +31,7 @@ struct Problem {
   mbrt::Vec3 point;      // the observed point on it, world coordinates at t = 0 (all bodies start unrotated)
   double base_step;      // mbrt's largest step; peers also try up to 16 times larger
   std::vector<Observation> reference;
+  std::string model_file;  // model_file: the model, and the observed point is the body's centre of mass
 };
 
 // Error of an observed point against the reference sample.
@@ -40,7 +43,7 @@ const std::vector<Problem>& problems();
 const Problem& problem(const std::string& name);
 
 // Gravity of the mechanism, m/s^2: -z for the heavy top, none for Andrews'
-// squeezer, -y for the planar mechanisms.
+// squeezer, -y for the planar mechanisms (model files carry their own).
 mbrt::Vec3 gravity(Mechanism m);
 
 // Peers' step sizes: base_step times 16, 8, 4, 2, 1, 1/2, 1/4 (their methods'

@@ -8,6 +8,8 @@
 #include <dart/dynamics/Skeleton.hpp>
 #include <dart/simulation/World.hpp>
 
+#include "tree_peer.hpp"
+
 namespace timing {
 namespace {
 
@@ -61,6 +63,7 @@ SkeletonPtr build(const Problem& p) {
     case Mechanism::heavy_top:
     case Mechanism::n_four_bar:
     case Mechanism::andrews: throw std::invalid_argument("DART builds trees of revolute joints only, not " + p.name);
+    case Mechanism::model_file: throw std::logic_error("a model file is built by tree_peer");
   }
   s->setGravity(vec(gravity(p.mechanism)));
   return s;
@@ -108,15 +111,19 @@ const std::vector<std::string>& dart_methods() {
 
 // Not built: the four-bars and Andrews' squeezer, closed loops that DART
 // would close with its constraint solver, and the heavy top.
-bool dart_builds(const Problem& p) { return p.mechanism == Mechanism::a01_pendulum || p.mechanism == Mechanism::chain; }
-
-Measurement run_dart(const Problem& p, const std::string& method, double h) {
-  DartEngine engine(p, h);
-  return measure(p, engine, {p.name, "dart", method, h});
+bool dart_builds(const Problem& p) {
+  return p.mechanism == Mechanism::a01_pendulum || p.mechanism == Mechanism::chain ||
+         p.mechanism == Mechanism::model_file;
 }
 
 std::unique_ptr<PeerEngine> dart_engine(const Problem& p, const std::string&, double h) {
+  if (p.mechanism == Mechanism::model_file) return tree_peer(p, "dart-euler", h);
   return std::make_unique<DartEngine>(p, h);
+}
+
+Measurement run_dart(const Problem& p, const std::string& method, double h) {
+  const std::unique_ptr<PeerEngine> engine = dart_engine(p, method, h);
+  return measure(p, *engine, {p.name, "dart", method, h});
 }
 
 }  // namespace timing

@@ -7,6 +7,7 @@
 #include <mujoco/mujoco.h>
 
 #include "mujoco_models.hpp"
+#include "tree_peer.hpp"
 
 namespace timing {
 namespace {
@@ -80,13 +81,14 @@ const std::vector<std::string>& mujoco_methods() {
   return names;
 }
 
-Measurement run_mujoco(const Problem& p, const std::string& method, double h) {
-  MujocoEngine engine(p, integrator(method), h);
-  return measure(p, engine, {p.name, "mujoco", method, h});
+std::unique_ptr<PeerEngine> mujoco_engine(const Problem& p, const std::string& method, double h) {
+  if (p.mechanism == Mechanism::model_file) return tree_peer(p, "mujoco-" + method, h);
+  return std::make_unique<MujocoEngine>(p, integrator(method), h);
 }
 
-std::unique_ptr<PeerEngine> mujoco_engine(const Problem& p, const std::string& method, double h) {
-  return std::make_unique<MujocoEngine>(p, integrator(method), h);
+Measurement run_mujoco(const Problem& p, const std::string& method, double h) {
+  const std::unique_ptr<PeerEngine> engine = mujoco_engine(p, method, h);
+  return measure(p, *engine, {p.name, "mujoco", method, h});
 }
 
 }  // namespace timing

@@ -123,6 +123,7 @@ std::string mechanism(const Problem& p, Mjcf& out) {
     case Mechanism::n_four_bar: return n_four_bar(p.n);
     case Mechanism::chain: return chain(p.n, out);
     case Mechanism::andrews: return andrews_squeezer();
+    case Mechanism::model_file: break;  // built from the file (tree_peer.hpp)
   }
   throw std::logic_error("unknown mechanism");
 }

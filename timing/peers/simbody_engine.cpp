@@ -7,6 +7,7 @@
 #include <Simbody.h>
 
 #include "andrews_mechanism.hpp"
+#include "tree_peer.hpp"
 
 namespace timing {
 namespace {
@@ -39,6 +40,7 @@ class Mechanism {
       case timing::Mechanism::n_four_bar: build_n_four_bar(p.n); break;
       case timing::Mechanism::chain: build_chain(p.n); break;
       case timing::Mechanism::andrews: build_andrews(); break;
+      case timing::Mechanism::model_file: throw std::logic_error("a model file is built by tree_peer");
     }
     state_ = system_.realizeTopology();
     system_.realize(state_, SimTK::Stage::Position);
@@ -174,13 +176,16 @@ const std::vector<std::string>& simbody_methods() {
   return names;
 }
 
-Measurement run_simbody(const Problem& p, const std::string& method, double h) {
-  SimbodyEngine engine(p, method, h);
-  return measure(p, engine, {p.name, "simbody", method, h});
+// A model file's tree in the same method, by peer_stability's name for it.
+std::unique_ptr<PeerEngine> simbody_engine(const Problem& p, const std::string& method, double h) {
+  if (p.mechanism == timing::Mechanism::model_file)
+    return tree_peer(p, method == "rk_merson" ? "simbody-rk-merson" : "simbody-semiexplicit-euler", h);
+  return std::make_unique<SimbodyEngine>(p, method, h);
 }
 
-std::unique_ptr<PeerEngine> simbody_engine(const Problem& p, const std::string& method, double h) {
-  return std::make_unique<SimbodyEngine>(p, method, h);
+Measurement run_simbody(const Problem& p, const std::string& method, double h) {
+  const std::unique_ptr<PeerEngine> engine = simbody_engine(p, method, h);
+  return measure(p, *engine, {p.name, "simbody", method, h});
 }
 
 }  // namespace timing
