@@ -191,7 +191,7 @@ TEST_CASE("staggered-nps refuses more cut rows than it solves densely, naming st
   }
 }
 
-TEST_CASE("a file that names no scheme gets midpoint-tree for a tree of one-dof joints, else staggered-pcst") {
+TEST_CASE("a file that names no scheme gets rk4-tree for a tree of one-dof joints, else staggered-pcst") {
   const std::string bodies =
       "name: t\nbodies:\n  - {name: a, mass: 1, inertia: [1, 1, 1], position: [1, 0, 0]}\n"
       "  - {name: b, mass: 1, inertia: [1, 1, 1], position: [2, 0, 0]}\n";
@@ -200,7 +200,7 @@ TEST_CASE("a file that names no scheme gets midpoint-tree for a tree of one-dof 
                                      "  - {name: pb, type: prismatic, body1: a, body2: b, point: [1.5, 0, 0], axis: [1, 0, 0]}\n",
                                  "t.yaml");
   CHECK_FALSE(tree.solver.scheme_given);
-  CHECK(default_scheme(tree) == mbrt::Scheme::midpoint_tree);
+  CHECK(default_scheme(tree) == mbrt::Scheme::rk4_tree);
   const Model ball = parse_model(
       bodies + "joints:\n" + pin_a + "  - {name: ball, type: spherical, body1: a, body2: b, point: [1.5, 0, 0]}\n", "t.yaml");
   CHECK(default_scheme(ball) == mbrt::Scheme::staggered_pcst);
@@ -215,7 +215,7 @@ TEST_CASE("a file that names no scheme gets midpoint-tree for a tree of one-dof 
   const std::string path = (std::filesystem::temp_directory_path() / "mbrt_default_scheme_tree.yaml").string();
   std::ofstream(path) << bodies << "joints:\n"
                       << pin_a << "  - {name: pb, type: revolute, body1: a, body2: b, point: [1.5, 0, 0], axis: [0, 1, 0]}\n";
-  CHECK(generate(path, {}).model.solver.scheme == mbrt::Scheme::midpoint_tree);
+  CHECK(generate(path, {}).model.solver.scheme == mbrt::Scheme::rk4_tree);
   GenerateOptions pcst;
   pcst.scheme = "staggered-pcst";
   CHECK(generate(path, pcst).model.solver.scheme == mbrt::Scheme::staggered_pcst);

@@ -22,6 +22,7 @@
 #include "actuated_lcm.hpp"
 #include "allocation_counter.hpp"
 #include "arm_7_midpoint.hpp"
+#include "arm_7_rk4.hpp"
 #include "arm_7_tree.hpp"
 #include "four_bar.hpp"
 #include "four_bar_general.hpp"
@@ -66,6 +67,7 @@ TEST_CASE("step() allocates nothing over 1e5 steps") {
   CHECK_NO_ALLOCATION(two_masses_special, 100000);  // gravity-free, an unloaded body
   CHECK_NO_ALLOCATION(arm_7_tree, 100000);          // staggered-tree
   CHECK_NO_ALLOCATION(arm_7_midpoint, 100000);      // midpoint-tree
+  CHECK_NO_ALLOCATION(arm_7_rk4, 100000);           // rk4-tree
 }
 
 // A workspace is scratch memory: a step must give the same state whatever
@@ -104,6 +106,7 @@ TEST_CASE("the caller's workspace carries nothing from one step to the next") {
   CHECK_WORKSPACE_IS_SCRATCH(a01_pendulum);
   CHECK_WORKSPACE_IS_SCRATCH(arm_7_tree);
   CHECK_WORKSPACE_IS_SCRATCH(arm_7_midpoint);
+  CHECK_WORKSPACE_IS_SCRATCH(arm_7_rk4);
   CHECK_WORKSPACE_IS_SCRATCH(heavy_top);
   CHECK_WORKSPACE_IS_SCRATCH(four_bar);
   CHECK_WORKSPACE_IS_SCRATCH(four_bar_nps);

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Core>
+
 #include <mbrt/schemes/tree.hpp>
 #include <mbrt/sin_cos.hpp>
 
@@ -32,6 +34,7 @@ struct Workspace {
   Dofs q0, qd0, qdd0;
   HalfAngles half_angles;
   Dofs rates;
+  Dofs q_sum, qd_sum;
   Kinematics k;
   Loads l;
 };
@@ -64,6 +67,16 @@ struct Pendulum {
 // midpoint-tree's step takes the same model with its own number of passes.
 struct MidpointPendulum : Pendulum {
   static constexpr int kStages = 3;
+};
+
+// rk4-tree's step on the small-angle pendulum, q'' = -(g / L) q, at a step
+// large enough for every term of the method to show.
+struct LinearPendulum : Pendulum {
+  static constexpr double kStep = 0.05;
+  static void joint_accelerations(const Dofs& q, const HalfAngles&, const Dofs&, const Kinematics&, const Loads&,
+                                  Dofs& qdd) {
+    qdd[0] = -(kG / kLength) * q[0];
+  }
 };
 
 State start(double angle) {
@@ -156,6 +169,35 @@ TEST_CASE("the midpoint template's small-amplitude period is long by (w h)^2 / 1
   CHECK(std::abs(r.period_error - expected) < 0.02 * expected);
   CHECK(r.drift < 1e-8);
   CHECK(std::abs(r.end.rigid[0].r.norm() - kLength) < 1e-15);
+}
+
+// The classical Runge-Kutta method maps a linear system y' = A y by the
+// Taylor polynomial of exp(h A) of degree four (Hairer, Norsett & Wanner
+// 1993, "Solving Ordinary Differential Equations I", section II.1): N steps
+// of the template must give T^N y0, T computed here. A wrong weight or stage
+// point changes T by at least a term of (w h)^4 / 24 = 4e-5 a step.
+TEST_CASE("the rk4 template steps the linear pendulum by the degree-four Taylor polynomial of exp(h A)") {
+  const double w2 = kG / kLength, h = LinearPendulum::kStep;
+  Eigen::Matrix2d hA;
+  hA << 0.0, h, -w2 * h, 0.0;
+  const Eigen::Matrix2d T =
+      Eigen::Matrix2d::Identity() + hA + hA * hA / 2.0 + hA * hA * hA / 6.0 + hA * hA * hA * hA / 24.0;
+  State s = start(0.3);
+  s.qd[0] = 0.7;
+  Eigen::Vector2d y(s.q[0], s.qd[0]);
+  Workspace w;
+  for (int k = 0; k < 200; ++k) {
+    REQUIRE(mbrt::schemes::tree_rk4_step<LinearPendulum>(s, w) == mbrt::StepStatus::ok);
+    y = T * y;
+  }
+  MESSAGE("after 200 steps: q " << s.q[0] << " (T^N: " << y[0] << "), qd " << s.qd[0] << " (" << y[1] << ")");
+  CHECK(std::abs(s.q[0] - y[0]) < 1e-12);
+  CHECK(std::abs(s.qd[0] - y[1]) < 1e-12);
+  CHECK(std::abs(s.t - 200 * h) < 1e-12);
+}
+
+TEST_CASE("the rk4 template restores the joint coordinates and the bodies after a non-finite step") {
+  check_restored(&mbrt::schemes::tree_rk4_step<Pendulum>, &State::qd);
 }
 
 TEST_CASE("the midpoint template restores the joint coordinates and the bodies after a non-finite step") {

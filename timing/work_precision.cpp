@@ -112,6 +112,11 @@ int main(int argc, char** argv) {
   std::printf("%-18s %-8s %-22s %10s %12s %12s %10s %8s %-10s %s\n", "problem", "engine", "method", "h", "max_error",
               "run_s", "ns/step", "allocs", "/MuJoCo", "/staggered-pcst (time at equal error)");
   for (const Measurement& m : best) {
+    if (!m.failed && m.samples == 0) {
+      std::fprintf(stderr, "%s %s %s at h = %g: no reference sample on its steps, left out\n", m.problem.c_str(),
+                   m.engine.c_str(), m.method.c_str(), m.h);
+      continue;
+    }
     const double steps = static_cast<double>(std::max(1L, m.steps));
     const double ns = 1e9 * m.seconds / steps, allocs = static_cast<double>(m.allocations) / steps;
     const std::string to_mujoco = ratio_text(timing::ratio_to_mujoco(m, best));

@@ -159,7 +159,7 @@ def work_precision_spatial(out):
     """timing/work_precision's run on the spatial trees (model-file problems), with the peers built from the files."""
     paragraph(out, "### The spatial trees: 6- and 7-link arms, a 30-link humanoid, a 16-link spatial chain")
     data = measured(out, "work_precision_spatial", "timing/work_precision 3 arm_6,arm_7,humanoid_30,spatial_chain_16 "
-                    "staggered-pcst,staggered-tree,midpoint-tree work_precision_spatial")
+                    "staggered-pcst,staggered-tree,midpoint-tree,rk4-tree work_precision_spatial")
     if data is None:
         return
     paragraph(out,
@@ -170,15 +170,15 @@ def work_precision_spatial(out):
         "centre of mass (the arms' last link, the humanoid's left hand, the chain's last link) from a reference "
         "sampled every 0.05 s, which timing/tree_reference computes with Simbody's error-controlled "
         "Runge-Kutta-Merson at accuracy 1e-12 (timing/references/; it differs from the same at 1e-10 by at most "
-        "1.1e-11 m and from MuJoCo's RK4 at 5e-5 s by at most 2.5e-13 m). In midpoint-tree, staggered-tree and "
-        "staggered-pcst; columns as above. Full table: [work_precision_spatial.txt](%swork_precision_spatial.txt)."
+        "8.8e-12 m and from MuJoCo's RK4 at 1e-6 s by at most 1.5e-13 m). Each run is compared at the samples "
+        "its steps land on. In rk4-tree, midpoint-tree, staggered-tree and staggered-pcst; columns as above. Full table: [work_precision_spatial.txt](%swork_precision_spatial.txt)."
         % LINK)
     problems = curve_table(out, data)
     paragraph(out, "Best mbrt run against MuJoCo's faster integrator at the same error, per problem and scheme "
               "(the goal for the arm class: at most 0.1):")
     body = []
     for p in problems:
-        for scheme in ("midpoint-tree", "staggered-tree", "staggered-pcst"):
+        for scheme in ("rk4-tree", "midpoint-tree", "staggered-tree", "staggered-pcst"):
             runs = [r for r in data if r["problem"] == p and r["engine"] == "mbrt" and r["method"] == scheme
                     and r["failed"] == "0" and r["time_ratio_to_mujoco"]]
             if not runs:
@@ -189,6 +189,7 @@ def work_precision_spatial(out):
                          g(worst["time_ratio_to_mujoco"]), g(worst["h"]), g(worst["max_error"], 2)])
     table(out, ["problem", "scheme", "best ratio to MuJoCo", "at h", "error (m)", "worst ratio", "at h",
                 "error (m)"], body)
+    against_pcst(out, data, "rk4-tree")
     against_pcst(out, data, "midpoint-tree")
     against_pcst(out, data, "staggered-tree")
     for p in problems:
@@ -366,6 +367,17 @@ def stability(out):
         paragraph(out, "How each grows: the log-log slope of instructions per step against links (1 is "
                   "linear, 2 quadratic), over the whole range measured and between its two largest chains.")
         table(out, ["scheme", "links", "slope, whole range", "slope, two largest"], growth_slopes(data))
+    spatial = measured(out, "chain_growth_spatial", "timing/chain_growth_spatial")
+    if spatial is not None:
+        paragraph(out,
+            "Spatial revolute chains (`tools/make_spatial.py chain N --joint revolute`, consecutive axes at "
+            "general angles) at h = 1e-3 s in mbrt's tree schemes and staggered-pcst and in the peers, each "
+            "building the chain from the same model file (timing/peer_stability). Instructions per step by "
+            "callgrind from runs of K and 2K steps (mbrt K = 200, peers K = 20); ns per step over 20000 steps "
+            "for mbrt, 2000 for the peers.")
+        table(out, ["links", "engine", "instructions per step", "ns per step"],
+              [[r["links"], r["engine"], r["instructions_per_step"], g(r["ns_per_step"])] for r in spatial])
+        image(out, "chain_growth_spatial.png", "cost against spatial chain length")
     check = rows("chain_growth_check.csv")
     if check is not None:
         paragraph(out, "Same chain in every engine: the tip of the 10-link chain after 0.2 s "

@@ -55,7 +55,9 @@ std::string Emitter::header() const {
     << "  std::array<mbrt::RigidState, kRigidBodies> rigid;     // by rigid::BODY\n"
     << "  std::array<mbrt::ParticleState, kParticles> particle;  // by particle::BODY\n"
     << (tree_scheme() ? std::string("  // The joint coordinates (rad or m from t = 0), their rates and accelerations")
-                            + (scheme_kind() == Scheme::midpoint_tree ? "\n  // (qdd at the last step's midpoint)" : "")
+                            + (scheme_kind() == Scheme::midpoint_tree ? "\n  // (qdd at the last step's midpoint)"
+                               : scheme_kind() == Scheme::rk4_tree    ? "\n  // (qdd from the last step's fourth stage)"
+                                                                      : "")
                             + ":\n"
                         "  // what step() advances; rigid holds the bodies they put where.\n"
                         "  Dofs q, qd, qdd;\n"
@@ -137,6 +139,7 @@ void Emitter::constants(std::ostringstream& o) const {
     case Scheme::ali3p:
     case Scheme::staggered_tree:
     case Scheme::midpoint_tree:
+    case Scheme::rk4_tree:
       break;  // in struct Model; ali3p's are per row
   }
   if (a_.gravity) o << "const mbrt::Vec3 kGravity = " << vec3(m_.gravity.value_or(Eigen::Vector3d::Zero())) << ";\n";
@@ -241,6 +244,7 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
     o << "  double t0;\n  Dofs q0, qd0, qdd0;  // the joint coordinates at t, restored when a step fails\n"
       << "  HalfAngles half_angles;  // of s.q\n"
       << "  Dofs rates;              // the rates the recursion runs at\n"
+      << (scheme_kind() == Scheme::rk4_tree ? "  Dofs q_sum, qd_sum;      // the stages' weighted rates and accelerations\n" : "")
       << "  detail::Kinematics k;    // where loads other than gravity need the bodies\n"
       << "  detail::Loads l;\n"
       << "};\n\n"
@@ -299,10 +303,14 @@ void Emitter::model_members(std::ostringstream& o) const {
       break;
     case Scheme::staggered_tree:
     case Scheme::midpoint_tree:
+    case Scheme::rk4_tree:
       o << "using Dofs = mbrt::models::" << m_.name << "::Dofs;\n"
         << "using HalfAngles = mbrt::models::" << m_.name << "::HalfAngles;\n"
         << "static constexpr int kStages = " << stages() << ";  // recursions per step"
-        << (scheme_kind() == Scheme::midpoint_tree ? " (fixed-point iterations)" : "") << "\n"
+        << (scheme_kind() == Scheme::midpoint_tree ? " (fixed-point iterations)"
+            : scheme_kind() == Scheme::rk4_tree    ? " (Runge-Kutta stages)"
+                                                   : "")
+        << "\n"
         << "static constexpr bool kExternalLoads = " << (tree_external_loads() ? "true" : "false")
         << ";  // loads other than gravity\n";
       break;

@@ -88,7 +88,9 @@ Inertia to_parent(const Transform& x, const Inertia& I) {
 bool Emitter::tree_scheme() const { return mbrt::joint_space(scheme_kind()); }
 
 std::string Emitter::tree_step_name() const {
-  return scheme_kind() == Scheme::midpoint_tree ? "tree_midpoint_step" : "tree_step";
+  if (scheme_kind() == Scheme::midpoint_tree) return "tree_midpoint_step";
+  if (scheme_kind() == Scheme::rk4_tree) return "tree_rk4_step";
+  return "tree_step";
 }
 
 bool Emitter::tree_external_loads() const { return !m_.forces.empty() || !m_.inputs.empty(); }

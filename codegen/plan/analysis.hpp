@@ -141,10 +141,10 @@ struct Analysis {
 // joint on a particle).
 Analysis analyse(const Model& model, const Specializations& specialize = {});
 
-// The scheme for a model whose file names none: midpoint-tree where the
-// bodies hang from ground by revolute and prismatic joints alone (the
-// cheapest at equal error that keeps energy at 1 kHz, docs/staggered-tree.md),
-// else staggered-pcst.
+// The scheme for a model whose file names none: rk4-tree where the bodies
+// hang from ground by revolute and prismatic joints alone (the cheapest at
+// equal error of the tree schemes, and the one that kept the energy best at
+// 1 kHz, docs/staggered-tree.md), else staggered-pcst.
 mbrt::Scheme default_scheme(const Model& model);
 
 // A time function's value and derivatives at t (generation-time checks).

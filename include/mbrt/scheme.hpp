@@ -15,17 +15,19 @@ enum class Scheme {
   baumgarte,       // docs/schemes.md
   staggered_tree,  // docs/staggered-tree.md
   midpoint_tree,   // docs/staggered-tree.md, "midpoint-tree"
+  rk4_tree,        // docs/staggered-tree.md, "rk4-tree"
 };
 
 // The names the model file and the command line use, one per Scheme in order.
-inline constexpr std::array<std::string_view, 7> kSchemeNames{
-    "staggered-pcst", "staggered-nps", "ali3p", "blajer", "baumgarte", "staggered-tree", "midpoint-tree"};
+inline constexpr std::array<std::string_view, 8> kSchemeNames{
+    "staggered-pcst", "staggered-nps", "ali3p",         "blajer",
+    "baumgarte",      "staggered-tree", "midpoint-tree", "rk4-tree"};
 
 inline constexpr std::string_view scheme_name(Scheme s) noexcept { return kSchemeNames[static_cast<int>(s)]; }
 
 // The schemes whose state is a tree's joint coordinates (include/mbrt/schemes/tree.hpp).
 inline constexpr bool joint_space(Scheme s) noexcept {
-  return s == Scheme::staggered_tree || s == Scheme::midpoint_tree;
+  return s == Scheme::staggered_tree || s == Scheme::midpoint_tree || s == Scheme::rk4_tree;
 }
 
 inline std::optional<Scheme> scheme_from_name(std::string_view name) noexcept {
