@@ -168,7 +168,7 @@ def work_precision_spatial(out):
         "the same model file (timing/peers/tree_engine.hpp: bodies, joint points and axes, inertias and initial "
         "state, checked against the file's to 1e-9 before the run). Error: the largest distance of one body's "
         "centre of mass (the arms' last link, the humanoid's left hand, the chain's last link) from a reference "
-        "sampled every 0.05 s, which timing/tree_reference computes with Simbody's error-controlled "
+        "sampled every 1 ms, which timing/tree_reference computes with Simbody's error-controlled "
         "Runge-Kutta-Merson at accuracy 1e-12 (timing/references/; it differs from the same at 1e-10 by at most "
         "8.8e-12 m and from MuJoCo's RK4 at 1e-6 s by at most 1.5e-13 m). Each run is compared at the samples "
         "its steps land on. In rk4-tree, midpoint-tree, staggered-tree and staggered-pcst; columns as above. Full table: [work_precision_spatial.txt](%swork_precision_spatial.txt)."
