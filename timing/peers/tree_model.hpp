@@ -4,6 +4,7 @@
 // every engine's energy compares with mbrt's.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,14 @@ std::vector<Link> links(const Model& m);
 
 // Angular velocity of a link relative to its parent, world axes.
 Vec3 relative_angular_velocity(const std::vector<BodyState>& s, const Link& l);
+
+// Whether the n values from x (an engine's state vector) are all finite.
+template <class T>
+bool all_finite(const T* x, int n) {
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(x[i])) return false;
+  return true;
+}
 
 // Empty when an engine's states match the model's initial ones (positions,
 // orientations, velocities, energy) to 1e-9 relative; otherwise what differs.

@@ -16,13 +16,6 @@
 namespace timing::tree {
 namespace {
 
-template <class T>
-bool all_finite(const T* x, int n) {
-  for (int i = 0; i < n; ++i)
-    if (!std::isfinite(x[i])) return false;
-  return true;
-}
-
 
 std::string numbers(std::initializer_list<double> xs) {
   std::ostringstream o;

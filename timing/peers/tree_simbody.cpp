@@ -13,13 +13,6 @@
 namespace timing::tree {
 namespace {
 
-template <class T>
-bool all_finite(const T* x, int n) {
-  for (int i = 0; i < n; ++i)
-    if (!std::isfinite(x[i])) return false;
-  return true;
-}
-
 
 SimTK::Vec3 simtk(const Vec3& v) { return {v[0], v[1], v[2]}; }
 SimTK::Rotation simtk(const Mat3& R) {
