@@ -166,6 +166,33 @@ TEST_CASE("bad command lines get a usage message and exit code 2") {
   CHECK(mbrt("sim '/nonexistent/model.yaml'").err.find("/nonexistent/model.yaml") != std::string::npos);
 }
 
+// Nothing is generated or compiled before the run options are checked: the
+// errors name the option, and stderr has no "compiling" line.
+TEST_CASE("sim's run options are checked before the model is compiled, with exit code 2") {
+  const struct { std::string options, message; } bad[] = {
+      {"--t-end -5", "--t-end: expected a finite time >= 0 s, got '-5'"},
+      {"--t-end inf", "--t-end: expected a finite time >= 0 s, got 'inf'"},
+      {"--t-end nan", "--t-end: expected a finite time >= 0 s, got 'nan'"},
+      {"--every 0", "--every: expected an integer >= 1 (steps), got '0'"},
+      {"--every 2.5", "--every: expected an integer, got '2.5'"},
+      {"--out /nonexistent_dir/x.csv", "--out: no directory /nonexistent_dir for '/nonexistent_dir/x.csv'"}};
+  for (const auto& b : bad) {
+    const Run r = mbrt("sim " + model("a01_pendulum.yaml") + " --name cli_checked " + b.options);
+    INFO(b.options << ": " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(b.message) != std::string::npos);
+    CHECK(r.err.find("compiling") == std::string::npos);
+  }
+}
+
+// The driver gets --t-end as written: a time below the 6 decimals of
+// std::to_string still runs its steps.
+TEST_CASE("sim takes --t-end at full precision") {
+  const Run r = mbrt("sim " + model("a01_pendulum.yaml") + " --h 1e-7 --t-end 3e-7");
+  REQUIRE(r.exit_code == 0);
+  CHECK(json_number(last_line(r.out), "steps") == 3);  // "0.000000" would run none
+}
+
 TEST_CASE("mbrt gen writes the LCM types, the DBC and packing of a model with inputs and outputs") {
   const fs::path dir = fs::path(MBRT_TEST_WORK_DIR) / "gen_lcm";
   const Run r = mbrt("gen " + model("actuated.yaml") + " -o '" + dir.string() + "'");

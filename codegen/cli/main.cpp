@@ -1,6 +1,8 @@
 // mbrt: generate a model's allocation-free step, or generate, compile and run it.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -68,6 +70,25 @@ int parse_integer(const std::string& flag, const std::string& text) {
   throw UsageError(flag + ": expected an integer, got '" + text + "'");
 }
 
+// sim's run options, checked before anything is generated or compiled; the
+// driver gets the text as given, at full precision.
+const std::string& run_time(const std::string& flag, const std::string& text) {
+  const double x = parse_number(flag, text);
+  if (!(x >= 0.0 && std::isfinite(x))) throw UsageError(flag + ": expected a finite time >= 0 s, got '" + text + "'");
+  return text;
+}
+
+const std::string& output_interval(const std::string& flag, const std::string& text) {
+  if (parse_integer(flag, text) < 1) throw UsageError(flag + ": expected an integer >= 1 (steps), got '" + text + "'");
+  return text;
+}
+
+const std::string& output_file(const std::string& flag, const std::string& text) {
+  const std::filesystem::path dir = std::filesystem::absolute(text).parent_path();
+  if (!std::filesystem::is_directory(dir)) throw UsageError(flag + ": no directory " + dir.string() + " for '" + text + "'");
+  return text;
+}
+
 // --no-specialize=NAME,...: clears the flags named.
 void turn_off(const std::string& names, mbrt::codegen::Specializations& s) {
   std::stringstream list(names);
@@ -114,9 +135,9 @@ int run(const std::vector<std::string>& args) {
     else if (a.rfind("--no-specialize=", 0) == 0) turn_off(a.substr(16), gen.specialize);
     else if (command == "gen" && a == "--report") report = true;
     else if (command == "gen" && a == "-o") out_dir = value();
-    else if (command == "sim" && a == "--t-end") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_number(a, value()))});
-    else if (command == "sim" && a == "--every") sim.driver_args.insert(sim.driver_args.end(), {a, std::to_string(parse_integer(a, value()))});
-    else if (command == "sim" && a == "--out") sim.driver_args.insert(sim.driver_args.end(), {a, value()});
+    else if (command == "sim" && a == "--t-end") sim.driver_args.insert(sim.driver_args.end(), {a, run_time(a, value())});
+    else if (command == "sim" && a == "--every") sim.driver_args.insert(sim.driver_args.end(), {a, output_interval(a, value())});
+    else if (command == "sim" && a == "--out") sim.driver_args.insert(sim.driver_args.end(), {a, output_file(a, value())});
     else if (command == "sim" && (a == "--velocities" || a == "--reactions")) sim.driver_args.push_back(a);
     else if (command != "gen" && a == "--verbose") sim.verbose = true;
     else if (program_options && a.rfind("--", 0) == 0) {
