@@ -71,7 +71,7 @@ std::vector<double> generalized_alpha_oscillator(double omega, double h, double 
 
 }  // namespace
 
-TEST_CASE("ali3p A01 over 100 s at h = 2.5e-4: position within 1e-4 m, tension within 2e-2 N") {
+TEST_CASE("ali3p A01 over 100 s at h = 2.5e-4: position within 1e-4 m, tension within 1e-4 N") {
   namespace m = mbrt::models::a01_ali3p;
   const std::vector<mbrt::Vec3> ref = reference::a01_bob_positions(100.0, 0.5, m::kStep / 2);
   m::State s = m::initial_state();
@@ -91,7 +91,7 @@ TEST_CASE("ali3p A01 over 100 s at h = 2.5e-4: position within 1e-4 m, tension w
                                            << residual.position << ", |phi'| " << residual.velocity << ", |phi''| "
                                            << residual.acceleration);
   CHECK(worst < 1e-4);
-  CHECK(worst_tension < 2e-2);
+  CHECK(worst_tension < 1e-4);  // measured 6.4e-6 N (1.2e-2 N before the multipliers followed Newton's law)
   CHECK(residual.position < 1e-12);
   CHECK(residual.velocity < 1e-12);
   CHECK(residual.acceleration < 1e-10);
