@@ -168,16 +168,24 @@ TEST_CASE("bad command lines get a usage message and exit code 2") {
 
 // Nothing is generated or compiled before the run options are checked: the
 // errors name the option, and stderr has no "compiling" line.
-TEST_CASE("sim's run options are checked before the model is compiled, with exit code 2") {
+TEST_CASE("sim's options are checked before the model is generated or compiled, with exit code 2") {
   const struct { std::string options, message; } bad[] = {
       {"--t-end -5", "--t-end: expected a finite time >= 0 s, got '-5'"},
       {"--t-end inf", "--t-end: expected a finite time >= 0 s, got 'inf'"},
       {"--t-end nan", "--t-end: expected a finite time >= 0 s, got 'nan'"},
       {"--every 0", "--every: expected an integer >= 1 (steps), got '0'"},
       {"--every 2.5", "--every: expected an integer, got '2.5'"},
-      {"--out /nonexistent_dir/x.csv", "--out: no directory /nonexistent_dir for '/nonexistent_dir/x.csv'"}};
+      {"--out /nonexistent_dir/x.csv", "--out: no directory /nonexistent_dir for '/nonexistent_dir/x.csv'"},
+      {"--scheme nosuch", "--scheme: expected one of: staggered-pcst, staggered-nps, ali3p, blajer, baumgarte, "
+                          "staggered-tree, midpoint-tree, rk4-tree, got 'nosuch'"},
+      {"--h -1", "--h: expected a finite step > 0 s"},
+      {"--h inf", "--h: expected a finite step > 0 s"},
+      {"--euler-updates 0", "--euler-updates: expected an integer >= 1"},
+      {"--name 9lives", "--name: expected a name matching [a-z][a-z0-9_]*, got '9lives'"},
+      {"--ali3p-projection newton", "--ali3p-projection: expected bayo or cuadrado, got 'newton'"},
+      {"--ali3p-integrator euler", "--ali3p-integrator: expected trapezoidal or generalized_alpha, got 'euler'"}};
   for (const auto& b : bad) {
-    const Run r = mbrt("sim " + model("a01_pendulum.yaml") + " --name cli_checked " + b.options);
+    const Run r = mbrt("sim " + model("a01_pendulum.yaml") + " " + b.options);
     INFO(b.options << ": " << r.err);
     CHECK(r.exit_code == 2);
     CHECK(r.err.find(b.message) != std::string::npos);

@@ -1,11 +1,13 @@
 #include "generate.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "emit_can.hpp"
 #include "emit_lcm.hpp"
@@ -15,47 +17,23 @@ namespace mbrt::codegen {
 
 namespace {
 
+bool valid_name(const std::string& n) {
+  return !n.empty() && n[0] >= 'a' && n[0] <= 'z' &&
+         std::all_of(n.begin(), n.end(), [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; });
+}
+
+// The options, checked by check_generate_options.
 void apply_overrides(Model& model, const GenerateOptions& options) {
-  const SourceLocation cli{model.file, 0, 0};
   if (options.scheme) {
-    const std::optional<mbrt::Scheme> scheme = mbrt::scheme_from_name(*options.scheme);
-    if (!scheme) {
-      std::string names;
-      for (std::string_view n : mbrt::kSchemeNames) names += (names.empty() ? "" : ", ") + std::string(n);
-      throw ModelError(cli, "--scheme", "expected one of: " + names + ", got '" + *options.scheme + "'");
-    }
-    model.solver.scheme = *scheme;
+    model.solver.scheme = *mbrt::scheme_from_name(*options.scheme);
     model.solver.scheme_given = true;
   }
-  if (options.name) {
-    const std::string& n = *options.name;
-    const bool valid = !n.empty() && n[0] >= 'a' && n[0] <= 'z' &&
-                       std::all_of(n.begin(), n.end(), [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; });
-    if (!valid) throw ModelError(cli, "--name", "expected a name matching [a-z][a-z0-9_]*, got '" + n + "'");
-    model.name = n;
-  }
-  if (options.step) {
-    if (!(*options.step > 0.0)) throw ModelError(cli, "--h", "expected a step > 0");
-    model.solver.step = *options.step;
-  }
-  if (options.euler_updates) {
-    if (*options.euler_updates < 1) throw ModelError(cli, "--euler-updates", "expected an integer >= 1");
-    model.solver.euler_updates = *options.euler_updates;
-  }
+  if (options.name) model.name = *options.name;
+  if (options.step) model.solver.step = *options.step;
+  if (options.euler_updates) model.solver.euler_updates = *options.euler_updates;
   Ali3pSettings& ali3p = model.solver.ali3p;
-  if (options.ali3p_projection) {
-    if (*options.ali3p_projection != "bayo" && *options.ali3p_projection != "cuadrado") {
-      throw ModelError(cli, "--ali3p-projection", "expected bayo or cuadrado, got '" + *options.ali3p_projection + "'");
-    }
-    ali3p.cuadrado_projection = *options.ali3p_projection == "cuadrado";
-  }
-  if (options.ali3p_integrator) {
-    if (*options.ali3p_integrator != "trapezoidal" && *options.ali3p_integrator != "generalized_alpha") {
-      throw ModelError(cli, "--ali3p-integrator",
-                       "expected trapezoidal or generalized_alpha, got '" + *options.ali3p_integrator + "'");
-    }
-    ali3p.generalized_alpha = *options.ali3p_integrator == "generalized_alpha";
-  }
+  if (options.ali3p_projection) ali3p.cuadrado_projection = *options.ali3p_projection == "cuadrado";
+  if (options.ali3p_integrator) ali3p.generalized_alpha = *options.ali3p_integrator == "generalized_alpha";
 }
 
 void check_initial_state(const Model& model, const Analysis& analysis) {
@@ -74,7 +52,26 @@ void check_initial_state(const Model& model, const Analysis& analysis) {
 
 }  // namespace
 
+void check_generate_options(const GenerateOptions& options) {
+  const auto bad = [](const std::string& flag, const std::string& why) { throw std::invalid_argument(flag + ": " + why); };
+  if (options.scheme && !mbrt::scheme_from_name(*options.scheme)) {
+    std::string names;
+    for (std::string_view n : mbrt::kSchemeNames) names += (names.empty() ? "" : ", ") + std::string(n);
+    bad("--scheme", "expected one of: " + names + ", got '" + *options.scheme + "'");
+  }
+  if (options.name && !valid_name(*options.name))
+    bad("--name", "expected a name matching [a-z][a-z0-9_]*, got '" + *options.name + "'");
+  if (options.step && !(*options.step > 0.0 && std::isfinite(*options.step))) bad("--h", "expected a finite step > 0 s");
+  if (options.euler_updates && *options.euler_updates < 1) bad("--euler-updates", "expected an integer >= 1");
+  if (options.ali3p_projection && *options.ali3p_projection != "bayo" && *options.ali3p_projection != "cuadrado")
+    bad("--ali3p-projection", "expected bayo or cuadrado, got '" + *options.ali3p_projection + "'");
+  if (options.ali3p_integrator && *options.ali3p_integrator != "trapezoidal" &&
+      *options.ali3p_integrator != "generalized_alpha")
+    bad("--ali3p-integrator", "expected trapezoidal or generalized_alpha, got '" + *options.ali3p_integrator + "'");
+}
+
 Generated generate(const std::string& model_path, const GenerateOptions& options) {
+  check_generate_options(options);
   Generated g{load_model(model_path), {}, {}, {}};
   apply_overrides(g.model, options);
   if (!g.model.solver.scheme_given) g.model.solver.scheme = default_scheme(g.model);

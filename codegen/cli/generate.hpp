@@ -31,6 +31,10 @@ struct Generated {
   StableStep stable;  // printed as a warning on stderr when the step is above it
 };
 
+// Throws std::invalid_argument ("--OPTION: what was expected, got what")
+// on an option value no model could take; generate() checks them first.
+void check_generate_options(const GenerateOptions& options);
+
 // Throws ModelError on a bad model, including inconsistent initial
 // conditions without --project-initial.
 Generated generate(const std::string& model_path, const GenerateOptions& options);

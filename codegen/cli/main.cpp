@@ -149,6 +149,11 @@ int run(const std::vector<std::string>& args) {
     else throw UsageError("unexpected argument '" + a + "'");
   }
   if (model_path.empty()) throw UsageError(command + ": missing MODEL.yaml");
+  try {
+    mbrt::codegen::check_generate_options(gen);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   if (command == "gen") {
     if (out_dir.empty()) throw UsageError("gen: missing -o DIR");
     const mbrt::codegen::Generated g = mbrt::codegen::generate(model_path, gen);
