@@ -1,6 +1,7 @@
 # Installs mbrt into a scratch prefix, then configures, builds and runs
-# examples/control_loop against it with find_package(mbrt), as a user would.
-# Arguments: -DMBRT_BUILD=<build dir> -DMBRT_SOURCE=<source dir> -DWORK=<scratch dir>
+# examples/control_loop against it with find_package(mbrt), as a user would,
+# and once more with `mbrt gen` and a compiler call from pkg-config.
+# Arguments: -DMBRT_BUILD=<build dir> -DMBRT_SOURCE=<source dir> -DWORK=<scratch dir> -DCXX=<C++ compiler>
 file(REMOVE_RECURSE "${WORK}")
 foreach(step
     "install;--install;${MBRT_BUILD};--prefix;${WORK}/prefix"
@@ -25,3 +26,30 @@ message("${out}")
 if(NOT rc EQUAL 0 OR NOT out MATCHES "\"status\": \"ok\"" OR NOT err MATCHES "-I'${WORK}/prefix/include'")
   message(FATAL_ERROR "installed mbrt sim failed (exit ${rc}):\n${out}\n${err}")
 endif()
+
+# Without CMake: mbrt gen, then the compiler with pkg-config's flags.
+find_program(PKG_CONFIG pkg-config REQUIRED)
+set(ENV{PKG_CONFIG_PATH} "${WORK}/prefix/share/pkgconfig")
+execute_process(COMMAND "${PKG_CONFIG}" --cflags mbrt RESULT_VARIABLE rc OUTPUT_VARIABLE cflags ERROR_VARIABLE err
+  OUTPUT_STRIP_TRAILING_WHITESPACE)
+separate_arguments(cflags UNIX_COMMAND "${cflags}")
+set(mbrt_include "")
+foreach(flag ${cflags})
+  if(flag MATCHES "^-I(.*share/pkgconfig.*)$")
+    file(REAL_PATH "${CMAKE_MATCH_1}" mbrt_include)
+  endif()
+endforeach()
+file(REAL_PATH "${WORK}/prefix/include" expected_include)
+if(NOT rc EQUAL 0 OR NOT mbrt_include STREQUAL expected_include)
+  message(FATAL_ERROR "pkg-config --cflags mbrt (exit ${rc}): '${cflags}' does not name ${expected_include} ${err}")
+endif()
+foreach(step
+    "${WORK}/prefix/bin/mbrt;gen;${MBRT_SOURCE}/examples/control_loop/double_pendulum.yaml;-o;${WORK}/pc"
+    "${CXX};-O2;${cflags};-I${WORK}/pc;${MBRT_SOURCE}/examples/control_loop/main.cpp;${WORK}/pc/double_pendulum.cpp;-o;${WORK}/pc/control_loop"
+    "${WORK}/pc/control_loop")
+  execute_process(COMMAND ${step} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "with pkg-config: ${step} failed (exit ${rc}):\n${out}")
+  endif()
+endforeach()
+message("with pkg-config: ${out}")
