@@ -19,6 +19,7 @@
 #include "humanoid_30.hpp"
 #include "humanoid_30_midpoint.hpp"
 #include "humanoid_30_tree.hpp"
+#include "reference_solutions.hpp"
 #include "spatial_chain_16_revolute.hpp"
 #include "spatial_chain_16_revolute_midpoint.hpp"
 #include "spatial_chain_16_revolute_rk4.hpp"
@@ -74,12 +75,6 @@ TEST_CASE("the midpoint tree step follows the arm, the chain and the branched tr
   CHECK(tree < 3e-5);
 }
 
-// The centre of mass of the arm's last link and of the chain's after 0.5 s,
-// from Simbody 3.7's error-controlled Runge-Kutta-Merson at accuracy 1e-12 on
-// the same model files (timing/tree_reference; within 9e-12 m of the same at
-// accuracy 1e-10 and 1.5e-13 m of MuJoCo 2.2.2's RK4 at h = 1e-6 s).
-const mbrt::Vec3 kArmTipAtHalfSecond(0.29273643659973658, 1.1484086788439551, -0.29510903100918962);
-const mbrt::Vec3 kChainTipAtHalfSecond(2.3136093813900782, 1.7293991660643162, -2.1970150626112317);
 
 #define DISTANCE_AT_HALF_A_SECOND(ns, body, reference)                                  \
   [] {                                                                                  \
@@ -94,10 +89,10 @@ const mbrt::Vec3 kChainTipAtHalfSecond(2.3136093813900782, 1.7293991660643162, -
 // second-order scheme's error would fall 4 times, midpoint-tree's is 9.5e-6 m
 // at 1 ms).
 TEST_CASE("rk4-tree is fourth order: its error against another engine falls 16 times per halving of the step") {
-  const double e4 = DISTANCE_AT_HALF_A_SECOND(arm_7_rk4_4ms, link_6, kArmTipAtHalfSecond);
-  const double e2 = DISTANCE_AT_HALF_A_SECOND(arm_7_rk4_2ms, link_6, kArmTipAtHalfSecond);
-  const double e1 = DISTANCE_AT_HALF_A_SECOND(arm_7_rk4, link_6, kArmTipAtHalfSecond);
-  const double chain = DISTANCE_AT_HALF_A_SECOND(spatial_chain_16_revolute_rk4, link_15, kChainTipAtHalfSecond);
+  const double e4 = DISTANCE_AT_HALF_A_SECOND(arm_7_rk4_4ms, link_6, reference::kArmTipAtHalfSecond);
+  const double e2 = DISTANCE_AT_HALF_A_SECOND(arm_7_rk4_2ms, link_6, reference::kArmTipAtHalfSecond);
+  const double e1 = DISTANCE_AT_HALF_A_SECOND(arm_7_rk4, link_6, reference::kArmTipAtHalfSecond);
+  const double chain = DISTANCE_AT_HALF_A_SECOND(spatial_chain_16_revolute_rk4, link_15, reference::kChainTipAtHalfSecond);
   MESSAGE("arm at 4, 2, 1 ms: " << e4 << ", " << e2 << ", " << e1 << " m; chain at 1 ms: " << chain << " m");
   CHECK(e4 / e2 > 12.0);
   CHECK(e4 / e2 < 20.0);

@@ -136,6 +136,7 @@ void Emitter::constants(std::ostringstream& o) const {
         << "constexpr double kBaumgarteBeta = " << num(a_.baumgarte_beta) << ";  // 1/s\n";
       break;
     case Scheme::blajer:
+    case Scheme::rk4_projected:
     case Scheme::ali3p:
     case Scheme::staggered_tree:
     case Scheme::midpoint_tree:
@@ -259,6 +260,10 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
       << "  " << ns << "NewtonMatrix g;       // the position stage's Newton matrix\n";
   }
   if (scheme_kind() == Scheme::staggered_nps) o << "  " << ns << "TreeSystem t;\n";
+  if (scheme_kind() == Scheme::rk4_projected) {
+    o << "  State sum;  // the Runge-Kutta stages' weighted rates, in a state's fields\n"
+      << "  std::array<mbrt::EulerParameters, kRigidBodies> p_stage;  // a stage's Euler parameters, not normalized\n";
+  }
   o << "  " << ns << "Loads l;\n"
     << "};\n\n"
     << "inline constexpr std::size_t kWorkspaceBytes = sizeof(Workspace);\n\n";
@@ -300,6 +305,11 @@ void Emitter::model_members(std::ostringstream& o) const {
       if (scheme_kind() == Scheme::staggered_nps) {
         o << "static constexpr int kCutRows = " << (nps_cuts() ? "detail::kCutRows" : "0") << ";\n";
       }
+      break;
+    case Scheme::rk4_projected:
+      o << "static constexpr int kCorrections = " << m_.solver.corrections << ";  // position corrections per step\n"
+        << "static constexpr bool kInputs = " << (has_inputs() ? "true" : "false")
+        << ";  // inputs may change between steps: the first stage is evaluated afresh\n";
       break;
     case Scheme::staggered_tree:
     case Scheme::midpoint_tree:
@@ -812,15 +822,25 @@ void Emitter::kinematics_function(std::ostringstream& o) const {
   o << "  k.vel = velocities_of(s);\n}\n\n";
 }
 
+std::string Emitter::step_function() const {
+  if (scheme_kind() == Scheme::ali3p) return "ali3p_step";
+  if (scheme_kind() == Scheme::rk4_projected) return "rk4_projected_step";
+  return tree_scheme() ? tree_step_name() : "staggered_step";
+}
+
+std::string Emitter::step_header() const {
+  if (scheme_kind() == Scheme::ali3p) return "ali3p.hpp";
+  if (scheme_kind() == Scheme::rk4_projected) return "rk4_projected.hpp";
+  return tree_scheme() ? "tree.hpp" : "staggered.hpp";
+}
+
 std::string Emitter::source() const {
   std::ostringstream o;
   o << "// mbrt generated model '" << m_.name << "': " << m_.bodies.size() << " bodies (" << a_.rigid_count
     << " rigid, " << a_.particle_count << " particles), " << m_.joints.size() << " joints, " << m_.drivers.size() << " drivers, " << a_.constraint_rows
     << " constraint rows.\n"
     << "// Scheme " << mbrt::scheme_name(scheme_kind()) << ": the step is mbrt::schemes::"
-    << (scheme_kind() == Scheme::ali3p ? "ali3p_step (include/mbrt/schemes/ali3p.hpp)"
-        : tree_scheme()                ? tree_step_name() + " (include/mbrt/schemes/tree.hpp)"
-                                       : "staggered_step (include/mbrt/schemes/staggered.hpp)")
+    << step_function() << " (include/mbrt/schemes/" << step_header() << ")"
     << "\n// over " << (a_.planar.applies ? "planar::Model" : "Model") << ", the model's types, constants and kernels below.\n";
   o << "// Left out for this scene:";
   for (const Skipped& s : a_.skipped) o << "\n//   " << s.specialization << ": " << s.removed;
@@ -828,7 +848,7 @@ std::string Emitter::source() const {
   if (!a_.planar.refusal.empty()) o << "\n// Kept: spatial coordinates, since " << a_.planar.refusal << ".";
   o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n"
     << "#include <mbrt/reactions.hpp>\n#include <mbrt/schemes/"
-    << (scheme_kind() == Scheme::ali3p ? "ali3p.hpp" : tree_scheme() ? "tree.hpp" : "staggered.hpp") << ">\n\n"
+    << step_header() << ">\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";
   constants(o);
   model_members(o);
@@ -872,7 +892,7 @@ void Emitter::public_functions(std::ostringstream& o) const {
   const std::string stepper = a_.planar.applies ? "planar::Model" : "Model";
   o << "State initial_state() noexcept { return Model::initial_state(); }\n\n"
     << "mbrt::StepStatus step(State& s, Workspace& w) noexcept {\n  return mbrt::schemes::"
-    << (scheme_kind() == Scheme::ali3p ? "ali3p_step" : tree_scheme() ? tree_step_name() : "staggered_step") << "<" << stepper << ">(s, w);\n}\n\n"
+    << step_function() << "<" << stepper << ">(s, w);\n}\n\n"
     << (tree_scheme() ? "void set_multipliers(State& s) noexcept { Model::set_multipliers(s); }\n\n" : "")
     << "mbrt::StepStatus step(State& s) noexcept {\n  Workspace w;\n  return step(s, w);\n}\n\n"
     << "mbrt::Energy energy(const State& s) noexcept { return Model::energy(s); }\n\n"
@@ -939,8 +959,15 @@ void Emitter::constraint_forces_function(std::ostringstream& o, const std::strin
       << "  for (int b = 0; b < kBodies; ++b) a[b] += g[b];\n";
   }
   o << "  " << (planar_ ? "Rows " : "") << lambda << " = jacobian_times(c, a) + stacked_quad(c)"
-    << (stabilization.empty() ? "" : " +\n             " + stabilization) << ";\n  solve(c, " << lambda
-    << ");\n  subtract_constraint_forces(c, " << lambda << ", 1.0, a);\n";
+    << (stabilization.empty() ? "" : " +\n             " + stabilization) << ";\n  solve(c, " << lambda << ");\n";
+  if (scheme_kind() == Scheme::rk4_projected) {
+    // S's regularization bends every stage's accelerations off the
+    // constraints by about kRegularization / S, which the projections then
+    // turn into a first-order error; one refinement squares it.
+    o << "  Rows refinement = kRegularization * " << lambda << ";  // (S + d) x = b, then x += (S + d)^-1 d x\n"
+      << "  solve(c, refinement);\n  " << lambda << " += refinement;\n";
+  }
+  o << "  subtract_constraint_forces(c, " << lambda << ", 1.0, a);\n";
   if (gyro) o << "  for (int b = 0; b < kBodies; ++b) a[b] -= g[b];\n";
   o << "  set_accelerations(a, s);\n" << (planar_ ? "  store_multipliers(lambda, s);\n" : "") << "}\n\n";
 }

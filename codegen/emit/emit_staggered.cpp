@@ -14,6 +14,7 @@ std::string Emitter::stabilization_term() const {
       return "(2.0 * kBaumgarteAlpha) * velocity_residual(c, generalized_velocities(s)) + "
              "(kBaumgarteBeta * kBaumgarteBeta) * phi";
     case Scheme::blajer:
+    case Scheme::rk4_projected:
     case Scheme::staggered_tree:
     case Scheme::midpoint_tree:
     case Scheme::rk4_tree:
@@ -85,6 +86,7 @@ void Emitter::staggered_stages(std::ostringstream& o) const {
 )";
       break;
     case Scheme::blajer:
+    case Scheme::rk4_projected:
       o << R"(// (c, l, phi, s) => (s.lambda, accelerations): the projective (index-1)
 // multipliers, S lambda = B M^-1 F + quad (Blajer 1997, eq. 26). Drift is
 // removed after the step by mass-orthogonal corrections.
@@ -92,7 +94,7 @@ void Emitter::staggered_stages(std::ostringstream& o) const {
       break;
   }
   constraint_forces_function(o, stabilization_term());
-  if (scheme_kind() == Scheme::blajer) correct_positions_function(o);
+  if (scheme_kind() == Scheme::blajer || scheme_kind() == Scheme::rk4_projected) correct_positions_function(o);
 }
 
 void Emitter::correct_positions_function(std::ostringstream& o) const {

@@ -221,6 +221,8 @@ class Emitter {
   // staggered-tree (emit_tree.cpp)
   bool tree_scheme() const;
   std::string tree_step_name() const;  // the template in include/mbrt/schemes/tree.hpp
+  std::string step_function() const;   // the step's template in include/mbrt/schemes/
+  std::string step_header() const;     // and its header there
   bool tree_external_loads() const;
   void tree_types(std::ostringstream& o) const;  // kDofs, Dofs, HalfAngles
   void tree_kernels(std::ostringstream& o) const;

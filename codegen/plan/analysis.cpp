@@ -318,7 +318,7 @@ StepPlan plan_step(const Model& model, const Analysis& a) {
   // the energy of arms, chains and a 30-link tree within 1.5 % over 20 s at
   // 1 kHz; two let it wander to 8 % (docs/staggered-tree.md, "midpoint-tree").
   if (p.scheme == mbrt::Scheme::midpoint_tree) p.stages = 3;
-  if (p.scheme == mbrt::Scheme::rk4_tree) p.stages = 4;  // the classical Runge-Kutta method's four
+  if (p.scheme == mbrt::Scheme::rk4_tree || p.scheme == mbrt::Scheme::rk4_projected) p.stages = 4;  // the classical Runge-Kutta method's four
   return p;
 }
 

@@ -26,7 +26,8 @@ double rotation_per_step(mbrt::Scheme scheme) {
     case mbrt::Scheme::staggered_tree:
     case mbrt::Scheme::midpoint_tree:
     case mbrt::Scheme::rk4_tree: return 0.7;
-    case mbrt::Scheme::ali3p: return 0.3;
+    case mbrt::Scheme::ali3p:
+    case mbrt::Scheme::rk4_projected: return 0.3;
     case mbrt::Scheme::staggered_nps:
     case mbrt::Scheme::blajer:
     case mbrt::Scheme::baumgarte: return 0.1;

@@ -41,6 +41,14 @@ inline EulerParameters cayley_increment(const Vec3& theta) noexcept {
   return c;
 }
 
+// p' = 1/2 p * (0, w): the Euler parameters' rate at body-frame angular
+// velocity w (for any p, so a Runge-Kutta stage's p need not be unit).
+inline EulerParameters euler_parameter_rate(const EulerParameters& p, const Vec3& w) noexcept {
+  EulerParameters w4;
+  w4 << 0.0, w;
+  return 0.5 * quaternion_product(p, w4);
+}
+
 // Advances p by body-frame angular velocity w held constant over h, using
 // `updates` Cayley sub-steps of h / updates each. More sub-steps approach the
 // exact exponential map; the count is fixed at generation time. The map is

@@ -16,12 +16,13 @@ enum class Scheme {
   staggered_tree,  // docs/staggered-tree.md
   midpoint_tree,   // docs/staggered-tree.md, "midpoint-tree"
   rk4_tree,        // docs/staggered-tree.md, "rk4-tree"
+  rk4_projected,   // docs/schemes.md, "rk4-projected"
 };
 
 // The names the model file and the command line use, one per Scheme in order.
-inline constexpr std::array<std::string_view, 8> kSchemeNames{
-    "staggered-pcst", "staggered-nps", "ali3p",         "blajer",
-    "baumgarte",      "staggered-tree", "midpoint-tree", "rk4-tree"};
+inline constexpr std::array<std::string_view, 9> kSchemeNames{
+    "staggered-pcst", "staggered-nps", "ali3p",         "blajer",         "baumgarte",
+    "staggered-tree", "midpoint-tree", "rk4-tree",      "rk4-projected"};
 
 inline constexpr std::string_view scheme_name(Scheme s) noexcept { return kSchemeNames[static_cast<int>(s)]; }
 
