@@ -16,6 +16,7 @@
 #include "arm_7.hpp"
 #include "arm_7_midpoint.hpp"
 #include "arm_7_rk4.hpp"
+#include "arm_7_rk4p.hpp"
 #include "arm_7_spinning_tool.hpp"
 #include "arm_7_tree.hpp"
 #include "arm_7_tree_fine.hpp"
@@ -27,8 +28,10 @@
 #include "spatial_chain_16_revolute_midpoint.hpp"
 #include "spatial_chain_16_revolute_rk4.hpp"
 #include "spatial_chain_16_revolute_tree.hpp"
+#include "spatial_chain_16_rk4p.hpp"
 #include "spinner.hpp"
 #include "spinner_2ms.hpp"
+#include "spinner_rk4p.hpp"
 
 namespace {
 
@@ -135,6 +138,20 @@ TEST_CASE("midpoint-tree keeps the arms, the revolute chain and a 30-link humano
 TEST_CASE("rk4-tree keeps the arm and the revolute chain within 1 % of their energy at 1 kHz") {
   for (const Run& r : {STRESS_RUN(arm_7_rk4, "arm_7.yaml", 10.0),
                        STRESS_RUN(spatial_chain_16_revolute_rk4, "spatial_chain_16_revolute.yaml", 10.0)}) {
+    CHECK(r.finite);
+    CHECK(r.drift < 1e-2);
+  }
+}
+
+// rk4-projected in absolute coordinates: measured over 20 s at 1e-3 s, arm_7
+// 0.033 %, the spherical chain 0.0076 %, the spinner (300 rad/s, 0.3 rad per
+// step) 0.88 %. Beyond about 0.3 rad per step it dissipates and then fails
+// (the disk at 1000 rad/s: 3.9 % at 0.5 rad per step, non-finite at 1), which
+// the generator's stable-step warning says (docs/stability.md).
+TEST_CASE("rk4-projected keeps the arm, the spherical chain and the spinner within 1 % of their energy at 1 kHz") {
+  for (const Run& r : {STRESS_RUN(arm_7_rk4p, "arm_7.yaml", 10.0),
+                       STRESS_RUN(spatial_chain_16_rk4p, "spatial_chain_16.yaml", 10.0),
+                       STRESS_RUN(spinner_rk4p, "spinner.yaml", 10.0)}) {
     CHECK(r.finite);
     CHECK(r.drift < 1e-2);
   }
