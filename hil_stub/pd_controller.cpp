@@ -27,6 +27,8 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include <mbrt/rt/can_bus.hpp>
 #include <mbrt/rt/lcm_bridge.hpp>
 #include <mbrt/rt/periodic_clock.hpp>
@@ -383,16 +385,22 @@ void send_command(Controller& c, Link& link, long seq) {
 }
 
 std::string report(const Controller& c) {
-  char buf[1024];
   const double rms = c.error_samples ? std::sqrt(c.error_sum_sq / static_cast<double>(c.error_samples)) : NAN;
-  std::snprintf(buf, sizeof buf,
-                "{\"states_received\": %ld, \"commands_sent\": %ld, \"joints_controlled\": %zu, "
-                "\"tracking_rms\": %s, \"tracking_max\": %.6g, \"tracking_samples\": %ld, \"faults\": {\"dropped\": %ld, "
-                "\"duplicated\": %ld, \"reordered\": %ld, \"garbage\": %ld, \"nan\": %ld, \"out_of_range\": %ld}}\n",
-                c.states_received, c.commands_sent, c.loops.size(), std::isfinite(rms) ? std::to_string(rms).c_str() : "null",
-                c.error_max, c.error_samples, c.faults.dropped, c.faults.duplicated, c.faults.reordered, c.faults.garbage,
-                c.faults.nan, c.faults.out_of_range);
-  return buf;
+  const nlohmann::ordered_json j = {
+      {"states_received", c.states_received},
+      {"commands_sent", c.commands_sent},
+      {"joints_controlled", c.loops.size()},
+      {"tracking_rms", rms},  // null without samples: JSON has no NaN
+      {"tracking_max", c.error_max},
+      {"tracking_samples", c.error_samples},
+      {"faults",
+       {{"dropped", c.faults.dropped},
+        {"duplicated", c.faults.duplicated},
+        {"reordered", c.faults.reordered},
+        {"garbage", c.faults.garbage},
+        {"nan", c.faults.nan},
+        {"out_of_range", c.faults.out_of_range}}}};
+  return j.dump() + "\n";
 }
 
 int run(const Options& opt) {

@@ -1,55 +1,48 @@
 #include "mbrt/rt/hil_report.hpp"
 
-#include <sstream>
+#include <nlohmann/json.hpp>
 
 namespace mbrt::rt {
 
 namespace {
 
-std::string percentiles(const LatencyHistogram& h) {
-  std::ostringstream o;
-  o << "{\"count\": " << h.count() << ", \"min\": " << h.min() << ", \"p50\": " << h.percentile(0.5)
-    << ", \"p99\": " << h.percentile(0.99) << ", \"p999\": " << h.percentile(0.999) << ", \"max\": " << h.max() << "}";
-  return o.str();
-}
-
-// JSON string escaping for the few free-text fields (paths, URLs, warnings).
-std::string quoted(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') q += '\\';
-    if (c == '\n') {
-      q += "\\n";
-      continue;
-    }
-    q += c;
-  }
-  return q + "\"";
+nlohmann::ordered_json percentiles(const LatencyHistogram& h) {
+  return {{"count", h.count()}, {"min", h.min()},   {"p50", h.percentile(0.5)},
+          {"p99", h.percentile(0.99)}, {"p999", h.percentile(0.999)}, {"max", h.max()}};
 }
 
 }  // namespace
 
 std::string to_json(const HilRunStats& s) {
-  std::ostringstream o;
-  o << "{\n  \"model\": " << quoted(s.model) << ",\n  \"transport\": " << quoted(s.transport)
-    << ",\n  \"rate_hz\": " << s.rate_hz << ",\n  \"steps_per_cycle\": " << s.steps_per_cycle
-    << ",\n  \"workspace_bytes\": " << s.workspace_bytes
-    << ",\n  \"cycles\": " << s.cycles << ",\n  \"deadline_misses\": " << s.deadline_misses
-    << ",\n  \"overruns\": " << s.overruns << ",\n  \"step_ns\": " << percentiles(s.step_ns)
-    << ",\n  \"cycle_ns\": " << percentiles(s.cycle_ns) << ",\n  \"wake_jitter_ns\": " << percentiles(s.wake_jitter_ns)
-    << ",\n  \"command_rtt_ns\": " << percentiles(s.command_rtt_ns)
-    << ",\n  \"commands_applied\": " << s.commands.applied() << ",\n  \"commands_rejected\": {";
-  for (int v = 1; v < kCommandVerdicts; ++v) {
-    o << (v > 1 ? ", " : "") << "\"" << to_string(static_cast<CommandVerdict>(v)) << "\": "
-      << s.commands.by_verdict[static_cast<std::size_t>(v)];
-  }
-  o << "},\n  \"commands_missing\": " << s.commands.missing << ",\n  \"commands_stale\": " << s.commands.stale
-    << ",\n  \"safe_cycles\": " << s.commands.safe_cycles << ",\n  \"step_failures\": " << s.step_failures
-    << ",\n  \"state_finite\": " << (s.state_finite ? "true" : "false") << ",\n  \"realtime\": {\"memory_locked\": "
-    << (s.realtime.memory_locked ? "true" : "false") << ", \"fifo\": " << (s.realtime.fifo ? "true" : "false")
-    << ", \"pinned\": " << (s.realtime.pinned ? "true" : "false") << ", \"warnings\": " << quoted(s.realtime.warnings)
-    << "}\n}\n";
-  return o.str();
+  nlohmann::ordered_json rejected = nlohmann::ordered_json::object();
+  for (int v = 1; v < kCommandVerdicts; ++v)
+    rejected[to_string(static_cast<CommandVerdict>(v))] = s.commands.by_verdict[static_cast<std::size_t>(v)];
+  const nlohmann::ordered_json j = {
+      {"model", s.model},
+      {"transport", s.transport},
+      {"rate_hz", s.rate_hz},
+      {"steps_per_cycle", s.steps_per_cycle},
+      {"workspace_bytes", s.workspace_bytes},
+      {"cycles", s.cycles},
+      {"deadline_misses", s.deadline_misses},
+      {"overruns", s.overruns},
+      {"step_ns", percentiles(s.step_ns)},
+      {"cycle_ns", percentiles(s.cycle_ns)},
+      {"wake_jitter_ns", percentiles(s.wake_jitter_ns)},
+      {"command_rtt_ns", percentiles(s.command_rtt_ns)},
+      {"commands_applied", s.commands.applied()},
+      {"commands_rejected", rejected},
+      {"commands_missing", s.commands.missing},
+      {"commands_stale", s.commands.stale},
+      {"safe_cycles", s.commands.safe_cycles},
+      {"step_failures", s.step_failures},
+      {"state_finite", s.state_finite},
+      {"realtime",
+       {{"memory_locked", s.realtime.memory_locked},
+        {"fifo", s.realtime.fifo},
+        {"pinned", s.realtime.pinned},
+        {"warnings", s.realtime.warnings}}}};
+  return j.dump(2) + "\n";
 }
 
 }  // namespace mbrt::rt

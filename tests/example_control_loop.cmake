@@ -23,7 +23,7 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E env MBRT_CACHE_DIR=${WORK}/cache
   "${WORK}/prefix/bin/mbrt" sim "${MBRT_SOURCE}/examples/control_loop/double_pendulum.yaml" --t-end 0.1 --verbose
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}")
-if(NOT rc EQUAL 0 OR NOT out MATCHES "\"status\": \"ok\"" OR NOT err MATCHES "-I'${WORK}/prefix/include'")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "\"status\": ?\"ok\"" OR NOT err MATCHES "-I'${WORK}/prefix/include'")
   message(FATAL_ERROR "installed mbrt sim failed (exit ${rc}):\n${out}\n${err}")
 endif()
 

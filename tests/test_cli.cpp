@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -57,12 +59,8 @@ std::vector<std::string> lines(const fs::path& file) {
   return out;
 }
 
-// Value of a numeric field of the summary JSON (flat object, no nesting).
-double json_number(const std::string& json, const std::string& key) {
-  const size_t at = json.find("\"" + key + "\": ");
-  REQUIRE(at != std::string::npos);
-  return std::stod(json.substr(at + key.size() + 4));
-}
+// The summary JSON on the last line of `mbrt sim`'s output, parsed strictly.
+nlohmann::json summary(const Run& r) { return nlohmann::json::parse(last_line(r.out)); }
 
 }  // namespace
 
@@ -72,16 +70,16 @@ TEST_CASE("mbrt sim writes the CSV trajectory and ends with a JSON summary") {
                      csv.string() + "'");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  const std::string json = last_line(r.out);
+  const nlohmann::json json = summary(r);
   for (const char* key : {"model", "scheme", "h", "steps", "wall_s", "ns_per_step", "max_position_violation",
-                          "max_velocity_violation", "max_quat_norm_error", "energy_initial", "energy_final",
-                          "status"}) {
-    CHECK(json.find(std::string("\"") + key + "\"") != std::string::npos);
+                          "max_velocity_violation", "max_acceleration_violation", "max_quat_norm_error",
+                          "energy_initial", "energy_final", "status"}) {
+    CHECK_MESSAGE(json.contains(key), key);
   }
-  CHECK(json.find("\"model\": \"a01_pendulum\"") != std::string::npos);
-  CHECK(json.find("\"status\": \"ok\"") != std::string::npos);
-  CHECK(json_number(json, "steps") == 2000);  // t_end / h with h = 5e-4 from the model file
-  CHECK(json_number(json, "h") == 5e-4);
+  CHECK(json.at("model") == "a01_pendulum");
+  CHECK(json.at("status") == "ok");
+  CHECK(json.at("steps") == 2000);  // t_end / h with h = 5e-4 from the model file
+  CHECK(json.at("h") == 5e-4);
   const std::vector<std::string> rows = lines(csv);
   REQUIRE(rows.size() == 1 + 21);  // header, t = 0 and every 100 steps
   CHECK(rows[0] == "t,bob.x,bob.y,bob.z,bob.vx,bob.vy,bob.vz");
@@ -94,8 +92,8 @@ TEST_CASE("mbrt sim names Euler parameters and body-axis angular velocities of r
       mbrt("sim " + model("heavy_top.yaml") + " --h 2e-4 --t-end 0.01 --velocities --out '" + csv.string() + "'");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  CHECK(json_number(last_line(r.out), "h") == 2e-4);
-  CHECK(json_number(last_line(r.out), "steps") == 50);
+  CHECK(summary(r).at("h") == 2e-4);
+  CHECK(summary(r).at("steps") == 50);
   CHECK(lines(csv)[0] == "t,top.x,top.y,top.z,top.e0,top.e1,top.e2,top.e3,top.vx,top.vy,top.vz,top.wx,top.wy,top.wz");
 }
 
@@ -105,7 +103,7 @@ TEST_CASE("a second mbrt sim of the same model reuses the compiled step") {
   const Run second = mbrt("sim " + model("free_body.yaml") + " --t-end 0.02");
   REQUIRE(second.exit_code == 0);
   CHECK(second.err.find("compiling") == std::string::npos);
-  CHECK(json_number(last_line(second.out), "steps") == 20);
+  CHECK(summary(second).at("steps") == 20);
 }
 
 TEST_CASE("mbrt gen writes the model's header and source") {
@@ -136,16 +134,15 @@ TEST_CASE("inconsistent initial velocities name the worst joint; --project-initi
   const Run fixed = mbrt("sim " + model("bad/inconsistent_velocity.yaml") + " --t-end 0.01 --project-initial");
   INFO(fixed.err);
   REQUIRE(fixed.exit_code == 0);
-  CHECK(json_number(last_line(fixed.out), "max_velocity_violation") < 1e-9);
+  CHECK(summary(fixed).at("max_velocity_violation") < 1e-9);
 }
 
 TEST_CASE("a run that blows up exits with 3 and still ends with valid JSON") {
   const Run r = mbrt("sim " + model("unstable_spring.yaml") + " --t-end 1");
   CHECK(r.exit_code == 3);
-  const std::string json = last_line(r.out);
-  CHECK(json.find("\"status\": \"non_finite\"") != std::string::npos);
-  CHECK(json.find("nan") == std::string::npos);  // JSON has no NaN or Inf: null instead
-  CHECK(json.find("inf") == std::string::npos);
+  const nlohmann::json json = summary(r);  // JSON has no NaN or Inf: a parser would refuse them
+  CHECK(json.at("status") == "non_finite");
+  for (const auto& [key, value] : json.items()) CHECK_MESSAGE((value.is_number() || value.is_string() || value.is_null()), key);
 }
 
 TEST_CASE("staggered-nps refuses a model with more cut-joint rows than it solves, before anything runs") {
@@ -198,7 +195,7 @@ TEST_CASE("sim's options are checked before the model is generated or compiled, 
 TEST_CASE("sim takes --t-end at full precision") {
   const Run r = mbrt("sim " + model("a01_pendulum.yaml") + " --h 1e-7 --t-end 3e-7");
   REQUIRE(r.exit_code == 0);
-  CHECK(json_number(last_line(r.out), "steps") == 3);  // "0.000000" would run none
+  CHECK(summary(r).at("steps") == 3);  // "0.000000" would run none
 }
 
 TEST_CASE("mbrt gen writes the LCM types, the DBC and packing of a model with inputs and outputs") {

@@ -3,10 +3,14 @@
 // general: its fields, and that the specializations make the step do less.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "flop_count.hpp"
 
@@ -15,7 +19,8 @@ using mbrt::codegen::flops_of_instruction;
 
 namespace {
 
-std::string run(const std::string& args) {
+// The report `mbrt ARGS -o DIR` prints, parsed strictly (invalid JSON fails the test).
+nlohmann::json run(const std::string& args) {
   const fs::path dir = fs::path(MBRT_TEST_WORK_DIR);
   fs::create_directories(dir);
   const std::string cmd = "MBRT_CACHE_DIR='" + (dir / "cache").string() + "' '" + MBRT_EXE + "' " + args +
@@ -26,14 +31,7 @@ std::string run(const std::string& args) {
   std::array<char, 4096> buf;
   while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
   REQUIRE(pclose(p) == 0);
-  return out;
-}
-
-// The number after "key": in a one-level JSON object.
-double number(const std::string& json, const std::string& key) {
-  const size_t at = json.find("\"" + key + "\": ");
-  REQUIRE_MESSAGE(at != std::string::npos, key);
-  return std::stod(json.substr(at + key.size() + 4));
+  return nlohmann::json::parse(out);
 }
 
 }  // namespace
@@ -60,37 +58,54 @@ TEST_CASE("a program with 7 operations per step counts 7") {
 
 TEST_CASE("the report lists what was left out and counts less for the specialized step") {
   const std::string model = std::string(MBRT_TEST_MODELS) + "/a01_pendulum.yaml";
-  const std::string special = run("gen '" + model + "' --report");
-  const std::string general = run("gen '" + model + "' --report --no-specialize");
+  const nlohmann::json special = run("gen '" + model + "' --report");
+  const nlohmann::json general = run("gen '" + model + "' --report --no-specialize");
   for (const std::string key : {"source_bytes", "executable_bytes", "flops_per_step", "instructions_per_step"}) {
-    CHECK_MESSAGE(number(special, key) > 0.0, key);
+    CHECK_MESSAGE(special.at(key).get<double>() > 0.0, key);
   }
+  CHECK(special.at("bodies") == 1);
+  CHECK(special.at("flops_per_body").get<double>() == special.at("flops_per_step").get<double>());
   // The step's work shrinks; the source need not (it lists what was left out).
   for (const std::string key : {"flops_per_step", "instructions_per_step"}) {
-    CHECK_MESSAGE(number(special, key) < number(general, key), key);
+    CHECK_MESSAGE(special.at(key).get<double>() < general.at(key).get<double>(), key);
   }
-  CHECK(special.find("\"turned_off\": []") != std::string::npos);
-  CHECK(general.find("\"turned_off\": [\"principal_axes\", \"isotropic\", \"single_stage\"") != std::string::npos);
-  CHECK(special.find("\"specialization\": \"single_stage\"") != std::string::npos);
-  CHECK(general.find("\"specialization\": \"single_stage\"") == std::string::npos);
-  CHECK(special.find("\"predicted_ns_per_step\": ") != std::string::npos);
+  const auto names = [](const nlohmann::json& list) {
+    std::vector<std::string> out;
+    for (const nlohmann::json& k : list) out.push_back(k.at("specialization"));
+    return out;
+  };
+  const auto has = [](const std::vector<std::string>& v, const std::string& x) { return std::find(v.begin(), v.end(), x) != v.end(); };
+  CHECK(special.at("turned_off").empty());
+  const std::vector<std::string> all_off = general.at("turned_off");
+  REQUIRE(all_off.size() >= 3);
+  CHECK(std::vector<std::string>(all_off.begin(), all_off.begin() + 3) ==
+        std::vector<std::string>{"principal_axes", "isotropic", "single_stage"});
+  CHECK(has(names(special.at("skipped")), "single_stage"));
+  CHECK_FALSE(has(names(general.at("skipped")), "single_stage"));
+  CHECK(special.contains("predicted_ns_per_step"));
   // One specialization turned off: the step does more than specialized, less than general.
-  const std::string one = run("gen '" + model + "' --report --no-specialize=single_stage");
-  CHECK(one.find("\"turned_off\": [\"single_stage\"]") != std::string::npos);
-  CHECK(number(one, "flops_per_step") > number(special, "flops_per_step"));
-  CHECK(number(one, "flops_per_step") < number(general, "flops_per_step"));
-  CHECK(special.find("\"calibration\": ") != std::string::npos);
+  const nlohmann::json one = run("gen '" + model + "' --report --no-specialize=single_stage");
+  CHECK(one.at("turned_off") == nlohmann::json::array({"single_stage"}));
+  CHECK(one.at("flops_per_step").get<double>() > special.at("flops_per_step").get<double>());
+  CHECK(one.at("flops_per_step").get<double>() < general.at("flops_per_step").get<double>());
+  CHECK(special.at("calibration").is_string());
+  CHECK(special.at("stable_step").at("stable_step").is_number());
 }
 
 TEST_CASE("the report names the planar specialization where it applies and says why where it does not") {
-  const std::string pendulum = run("gen '" + std::string(MBRT_TEST_MODELS) + "/a01_pendulum.yaml' --report");
-  CHECK(pendulum.find("\"specialization\": \"planar\", \"removed\"") != std::string::npos);
-  CHECK(pendulum.find("\"not_applied\": []") != std::string::npos);
-  const std::string off = run("gen '" + std::string(MBRT_TEST_MODELS) + "/a01_pendulum.yaml' --report --no-specialize=planar");
-  CHECK(off.find("\"turned_off\": [\"planar\"]") != std::string::npos);
-  CHECK(off.find("\"specialization\": \"planar\"") == std::string::npos);
-  const std::string top = run("gen '" + std::string(MBRT_TEST_MODELS) + "/heavy_top.yaml' --report");
+  const auto find = [](const nlohmann::json& list, const std::string& name) {
+    for (const nlohmann::json& k : list)
+      if (k.at("specialization") == name) return k;
+    return nlohmann::json();
+  };
+  const nlohmann::json pendulum = run("gen '" + std::string(MBRT_TEST_MODELS) + "/a01_pendulum.yaml' --report");
+  CHECK(find(pendulum.at("skipped"), "planar").contains("removed"));
+  CHECK(pendulum.at("not_applied").empty());
+  const nlohmann::json off = run("gen '" + std::string(MBRT_TEST_MODELS) + "/a01_pendulum.yaml' --report --no-specialize=planar");
+  CHECK(off.at("turned_off") == nlohmann::json::array({"planar"}));
+  CHECK(find(off.at("skipped"), "planar").is_null());
+  const nlohmann::json top = run("gen '" + std::string(MBRT_TEST_MODELS) + "/heavy_top.yaml' --report");
   // One reason per plane tried: x-y, x-z, y-z.
-  CHECK(top.find("{\"specialization\": \"planar\", \"reason\": \"gravity is not in the x-y plane; body top turns "
-                 "about an axis other than y; body top moves out of the y-z plane\"}") != std::string::npos);
+  CHECK(find(top.at("not_applied"), "planar").at("reason") ==
+        "gravity is not in the x-y plane; body top turns about an axis other than y; body top moves out of the y-z plane");
 }

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "peer_engine.hpp"
 #include "problems.hpp"
 #ifdef MBRT_WITH_MUJOCO
@@ -97,10 +99,15 @@ int run(int argc, char** argv) {
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const long done = std::lround(engine->time() / h);
   const mbrt::Vec3 tip = engine->observed();
-  std::printf("{\"links\": %d, \"peer\": \"%s\", \"h\": %.17g, \"steps\": %ld, \"t\": %.17g, \"ns_per_step\": %.6g, "
-              "\"tip\": [%.17g, %.17g, %.17g], \"status\": \"%s\"}\n",
-              n, name.c_str(), h, done, engine->time(), done ? 1e9 * seconds / done : 0.0, tip[0], tip[1], tip[2],
-              ok ? "ok" : "failed");
+  const nlohmann::ordered_json j = {{"links", n},
+                                    {"peer", name},
+                                    {"h", h},
+                                    {"steps", done},
+                                    {"t", engine->time()},
+                                    {"ns_per_step", done ? 1e9 * seconds / static_cast<double>(done) : 0.0},
+                                    {"tip", {tip[0], tip[1], tip[2]}},
+                                    {"status", ok ? "ok" : "failed"}};
+  std::printf("%s\n", j.dump().c_str());
   return ok ? 0 : 3;
 }
 

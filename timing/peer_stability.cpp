@@ -38,6 +38,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "tree_engine.hpp"
 
 namespace {
@@ -133,36 +135,25 @@ Result run(Engine& engine, const Model& m, const Options& o) {
   return r;
 }
 
-std::string json_number(double x) {
-  if (!std::isfinite(x)) return "null";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
-
 void print_json(const Options& o, const Model& m, const Result& r) {
   // A run that blew up has no final energy, and its drift is unbounded
   // (MuJoCo has even reset the state): null, not the drift of the samples
-  // before, which may be none.
+  // before, which may be none. nlohmann-json writes non-finite numbers as null.
   const double end = r.finite ? r.e_final : NAN, drift = r.finite ? r.max_drift : NAN;
-  std::printf(
-      "{\"engine\": %s, \"model\": %s, \"h\": %s, \"steps\": %ld, \"finite\": %s, \"t_nonfinite\": %s, "
-      "\"energy_initial\": %s, \"energy_final\": %s, \"max_abs_energy_drift\": %s, \"relative_drift\": %s, "
-      "\"energy_samples\": %ld, \"wall_s\": %s, \"ns_per_step\": %s}\n",
-      json_string(o.engine).c_str(), json_string(m.name).c_str(), json_number(o.h).c_str(), r.steps,
-      r.finite ? "true" : "false", json_number(r.t_nonfinite).c_str(), json_number(r.e0).c_str(),
-      json_number(end).c_str(), json_number(drift).c_str(),
-      json_number(r.e0 != 0 ? drift / std::abs(r.e0) : NAN).c_str(), r.samples, json_number(r.wall_s).c_str(),
-      json_number(r.steps > 0 ? 1e9 * r.wall_s / r.steps : NAN).c_str());
+  const nlohmann::ordered_json j = {{"engine", o.engine},
+                                    {"model", m.name},
+                                    {"h", o.h},
+                                    {"steps", r.steps},
+                                    {"finite", r.finite},
+                                    {"t_nonfinite", r.t_nonfinite},
+                                    {"energy_initial", r.e0},
+                                    {"energy_final", end},
+                                    {"max_abs_energy_drift", drift},
+                                    {"relative_drift", r.e0 != 0 ? drift / std::abs(r.e0) : NAN},
+                                    {"energy_samples", r.samples},
+                                    {"wall_s", r.wall_s},
+                                    {"ns_per_step", r.steps > 0 ? 1e9 * r.wall_s / static_cast<double>(r.steps) : NAN}};
+  std::printf("%s\n", j.dump().c_str());
 }
 
 int main_checked(int argc, char** argv) {

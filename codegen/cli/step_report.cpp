@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "toolchain.hpp"
 
 namespace fs = std::filesystem;
@@ -15,15 +17,6 @@ namespace {
 // Steps counted: enough that the difference of N and 2N steps is exact
 // (fixed work per step) and short under valgrind.
 constexpr int kCountedSteps = 200;
-
-std::string json_string(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') q += '\\';
-    q += c;
-  }
-  return q + "\"";
-}
 
 // ns_per_flop from the calibration file's first data row
 // (header model,scheme,flops_per_step,ns_per_step,ns_per_flop). The report
@@ -51,6 +44,7 @@ StepReport report_step(const Generated& g, const SimOptions& options) {
   StepReport r;
   r.model = g.model.name;
   r.scheme = mbrt::scheme_name(g.model.solver.scheme);
+  r.bodies = g.model.bodies.size();
   for (const auto& [name, flag] : kSpecializationNames) {
     if (!(options.generate.specialize.*flag)) r.turned_off.push_back(name);
   }
@@ -66,29 +60,37 @@ StepReport report_step(const Generated& g, const SimOptions& options) {
 }
 
 std::string report_json(const StepReport& r) {
-  std::ostringstream o;
-  o << "{\n  \"model\": " << json_string(r.model) << ",\n  \"scheme\": " << json_string(r.scheme)
-    << ",\n  \"turned_off\": [";
-  for (size_t i = 0; i < r.turned_off.size(); ++i) o << (i ? ", " : "") << json_string(r.turned_off[i]);
-  o << "],\n  \"skipped\": [";
-  for (size_t i = 0; i < r.skipped.size(); ++i) {
-    o << (i ? "," : "") << "\n    {\"specialization\": " << json_string(r.skipped[i].specialization)
-      << ", \"removed\": " << json_string(r.skipped[i].removed) << "}";
-  }
-  o << (r.skipped.empty() ? "" : "\n  ") << "],\n  \"not_applied\": [";
-  for (size_t i = 0; i < r.not_applied.size(); ++i) {
-    o << (i ? "," : "") << "\n    {\"specialization\": " << json_string(r.not_applied[i].specialization)
-      << ", \"reason\": " << json_string(r.not_applied[i].reason) << "}";
-  }
-  o << (r.not_applied.empty() ? "" : "\n  ") << "],\n  \"source_bytes\": " << r.source_bytes
-    << ",\n  \"executable_bytes\": " << r.executable_bytes << ",\n  \"flops_per_step\": " << r.per_step.flops
-    << ",\n  \"instructions_per_step\": " << r.per_step.instructions << ",\n  \"ns_per_flop\": ";
-  if (r.ns_per_flop) o << *r.ns_per_flop; else o << "null";
-  o << ",\n  \"predicted_ns_per_step\": ";
-  if (r.ns_per_flop) o << *r.ns_per_flop * r.per_step.flops; else o << "null";
-  o << ",\n  \"calibration\": " << json_string(r.calibration) << ",\n  \"stable_step\": " << stable_step_json(r.stable)
-    << "\n}";
-  return o.str();
+  using Json = nlohmann::ordered_json;
+  Json skipped = Json::array(), not_applied = Json::array();
+  for (const Skipped& k : r.skipped) skipped.push_back({{"specialization", k.specialization}, {"removed", k.removed}});
+  for (const NotApplied& k : r.not_applied) not_applied.push_back({{"specialization", k.specialization}, {"reason", k.reason}});
+  const StableStep& st = r.stable;
+  const Json stable = {{"stable_step", st.stable_step},
+                       {"exceeded", st.exceeded},
+                       {"energy_bound", st.energy_bound},
+                       {"fastest_rotation", st.fastest_rotation},
+                       {"fastest_body", st.fastest_body},
+                       {"rotation_per_step", st.rotation_per_step},
+                       {"stiffest_frequency", st.stiffest_frequency},
+                       {"stiffest_element", st.stiffest_element},
+                       {"note", st.note}};
+  const Json predicted = r.ns_per_flop ? Json(*r.ns_per_flop * static_cast<double>(r.per_step.flops)) : Json(nullptr);
+  const Json j = {{"model", r.model},
+                  {"scheme", r.scheme},
+                  {"turned_off", r.turned_off},
+                  {"skipped", skipped},
+                  {"not_applied", not_applied},
+                  {"bodies", r.bodies},
+                  {"source_bytes", r.source_bytes},
+                  {"executable_bytes", r.executable_bytes},
+                  {"flops_per_step", r.per_step.flops},
+                  {"flops_per_body", r.bodies ? static_cast<double>(r.per_step.flops) / static_cast<double>(r.bodies) : 0.0},
+                  {"instructions_per_step", r.per_step.instructions},
+                  {"ns_per_flop", r.ns_per_flop ? Json(*r.ns_per_flop) : Json(nullptr)},
+                  {"predicted_ns_per_step", predicted},
+                  {"calibration", r.calibration},
+                  {"stable_step", stable}};
+  return j.dump(4);
 }
 
 }  // namespace mbrt::codegen

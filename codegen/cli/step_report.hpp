@@ -20,6 +20,7 @@ struct StepReport {
   std::vector<std::string> turned_off;  // specializations --no-specialize turned off
   std::vector<Skipped> skipped;
   std::vector<NotApplied> not_applied;
+  size_t bodies = 0;                // rigid bodies and particles: flops_per_body divides by it
   size_t source_bytes = 0;          // generated <name>.hpp and <name>.cpp
   size_t executable_bytes = 0;      // the compiled sim program (model, driver and runtime)
   StepCount per_step;

@@ -225,15 +225,4 @@ std::string tree_energy_warning(const Model& m) {
   return o.str();
 }
 
-std::string stable_step_json(const StableStep& s) {
-  std::ostringstream o;
-  o.precision(6);
-  o << "{\"stable_step\": " << s.stable_step << ", \"exceeded\": " << (s.exceeded ? "true" : "false")
-    << ", \"energy_bound\": " << s.energy_bound << ", \"fastest_rotation\": " << s.fastest_rotation
-    << ", \"fastest_body\": \"" << s.fastest_body << "\", \"rotation_per_step\": " << s.rotation_per_step
-    << ", \"stiffest_frequency\": " << s.stiffest_frequency << ", \"stiffest_element\": \"" << s.stiffest_element
-    << "\", \"note\": \"" << s.note << "\"}";
-  return o.str();
-}
-
 }  // namespace mbrt::codegen

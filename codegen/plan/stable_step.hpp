@@ -33,7 +33,4 @@ std::string stable_step_warning(const Model& model, const StableStep& s);
 inline constexpr double kTreeEnergyStep = 1e-4;  // s
 std::string tree_energy_warning(const Model& model);
 
-// The "stable_step" object of gen --report.
-std::string stable_step_json(const StableStep& s);
-
 }  // namespace mbrt::codegen

@@ -11,6 +11,8 @@
 #include <memory>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include MBRT_MODEL_HEADER
 
 namespace model = MBRT_MODEL_NAMESPACE;
@@ -102,14 +104,6 @@ void write_row(std::FILE* f, const model::State& s, const Options& o) {
   std::fprintf(f, "\n");
 }
 
-// A JSON number; JSON has no NaN or Inf, so a blown-up value becomes null.
-std::string json_number(double x) {
-  if (!std::isfinite(x)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -158,13 +152,21 @@ int main(int argc, char** argv) {
   }
   if (csv) std::fclose(csv);
   const double wall_s = std::chrono::duration<double>(clock::now() - started).count();
-  std::printf(
-      "{\"model\": \"%s\", \"scheme\": \"%s\", \"h\": %.17g, \"steps\": %ld, \"wall_s\": %.6g, \"ns_per_step\": %.6g, "
-      "\"max_position_violation\": %s, \"max_velocity_violation\": %s, "
-      "\"max_acceleration_violation\": %s, \"max_quat_norm_error\": %s, "
-      "\"energy_initial\": %s, \"energy_final\": %s, \"status\": \"%s\"}\n",
-      model::kName, model::kScheme, model::kStep, done, wall_s, done ? 1e9 * stepping_s / done : 0.0,
-      json_number(max_pos).c_str(), json_number(max_vel).c_str(), json_number(max_acc).c_str(), json_number(max_quat).c_str(),
-      json_number(e0).c_str(), json_number(model::energy(s).total()).c_str(), mbrt::to_string(status));
+  // The summary: one JSON object on the last line (non-finite numbers become null).
+  const nlohmann::ordered_json summary = {
+      {"model", model::kName},
+      {"scheme", model::kScheme},
+      {"h", model::kStep},
+      {"steps", done},
+      {"wall_s", wall_s},
+      {"ns_per_step", done ? 1e9 * stepping_s / static_cast<double>(done) : 0.0},
+      {"max_position_violation", max_pos},
+      {"max_velocity_violation", max_vel},
+      {"max_acceleration_violation", max_acc},
+      {"max_quat_norm_error", max_quat},
+      {"energy_initial", e0},
+      {"energy_final", model::energy(s).total()},
+      {"status", mbrt::to_string(status)}};
+  std::printf("%s\n", summary.dump().c_str());
   return status == mbrt::StepStatus::ok ? 0 : 3;
 }
