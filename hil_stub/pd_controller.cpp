@@ -42,79 +42,16 @@ using namespace mbrt::rt;
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: pd_controller (--lcm URL | --can BUS) [--rate HZ] [--duration S] [--report F.json]
-           [--kp K[,K...]] [--kd K[,K...]] [--amplitude A] [--frequency F] [--settle S]
-           [--delay-us D] [--jitter-us J] [--seed N] [--crash-after S]
-           [--drop P] [--duplicate P] [--reorder P] [--garbage P] [--nan P] [--out-of-range P]
-           [--state-channel C] [--command-channel C]
-)";
-
 constexpr double kPi = 3.14159265358979323846;
 
-// Probabilities of each fault per command.
-struct Faults {
-  double drop = 0, duplicate = 0, reorder = 0, garbage = 0, nan = 0, out_of_range = 0;
-};
-
-struct Options {
-  LinkOptions link{"", 500.0, 5.0, "", model::kStateChannel, model::kCommandChannel, "", ""};
-  std::vector<double> kp{40.0}, kd{4.0};
-  double amplitude = 0.5, frequency = 0.5;
-  double settle_s = 1.0;
-  double delay_us = 0.0, jitter_us = 0.0;
-  unsigned seed = 1;
-  double crash_after_s = -1.0;
-  Faults faults;
-};
-
-// "a" or "a,b,c": gains for all joints, or one per controlled joint.
-std::vector<double> gains(ProgramOptions& args) {
-  const std::string option = args.name(), text = args.text();
-  std::vector<double> out;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t end = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, end - start);
-    char* used = nullptr;
-    const double x = std::strtod(item.c_str(), &used);
-    if (item.empty() || *used != '\0' || !std::isfinite(x)) args.fail(option + ": expected numbers separated by commas, got '" + text + "'");
-    out.push_back(x);
-    start = end + 1;
-  }
-  return out;
-}
-
-double probability(ProgramOptions& args) {
-  const double p = args.number();
-  if (!(p >= 0.0 && p <= 1.0)) args.fail(args.name() + ": expected a probability in [0, 1]");
-  return p;
-}
-
-Options parse(int argc, char** argv) {
-  Options o;
-  ProgramOptions args(argc, argv, kUsage);
-  while (args.next()) {
-    const std::string a = args.name();
-    if (read_link_option(args, o.link)) continue;
-    if (a == "--kp") o.kp = gains(args);
-    else if (a == "--kd") o.kd = gains(args);
-    else if (a == "--amplitude") o.amplitude = args.number();
-    else if (a == "--frequency") o.frequency = args.number();
-    else if (a == "--settle") o.settle_s = args.number();
-    else if (a == "--delay-us") o.delay_us = args.number();
-    else if (a == "--jitter-us") o.jitter_us = args.number();
-    else if (a == "--seed") o.seed = static_cast<unsigned>(args.integer());
-    else if (a == "--crash-after") o.crash_after_s = args.number();
-    else if (a == "--drop") o.faults.drop = probability(args);
-    else if (a == "--duplicate") o.faults.duplicate = probability(args);
-    else if (a == "--reorder") o.faults.reorder = probability(args);
-    else if (a == "--garbage") o.faults.garbage = probability(args);
-    else if (a == "--nan") o.faults.nan = probability(args);
-    else if (a == "--out-of-range") o.faults.out_of_range = probability(args);
-    else args.fail("unknown option '" + a + "'");
-  }
-  check_link_options(args, o.link);
-  if (!(o.delay_us >= 0.0) || !(o.jitter_us >= 0.0)) args.fail("--delay-us and --jitter-us must be >= 0");
+StubOptions parse(int argc, char** argv) {
+  StubOptions o;
+  o.link.state_channel = model::kStateChannel;
+  o.link.command_channel = model::kCommandChannel;
+  CLI::App app("stub: a PD controller with fault injection for a model running in `mbrt hil`", "pd_controller");
+  add_stub_options(app, o);
+  parse_or_exit(app, argc, argv);
+  if (const std::string why = check_stub_options(o); !why.empty()) fail(app, why);
   return o;
 }
 
@@ -153,7 +90,7 @@ struct FaultCounts {
 };
 
 struct Controller {
-  Options opt;
+  StubOptions opt;
   std::vector<JointLoop> loops = joint_loops();
   // The latest state: its outputs and time, and what a command answering it quotes.
   model::Outputs y{};
@@ -170,7 +107,7 @@ struct Controller {
   std::mt19937_64 random;
   std::vector<unsigned char> held;  // a command kept back to be sent after the next one (encoded)
 
-  explicit Controller(const Options& o) : opt(o), random(o.seed) {
+  explicit Controller(const StubOptions& o) : opt(o), random(o.seed) {
     for (const std::vector<double>* g : {&opt.kp, &opt.kd}) {
       if (g->size() != 1 && g->size() != loops.size()) {
         throw std::runtime_error("--kp and --kd take one gain or one per controlled joint (" + std::to_string(loops.size()) + ")");
@@ -403,7 +340,7 @@ std::string report(const Controller& c) {
   return j.dump() + "\n";
 }
 
-int run(const Options& opt) {
+int run(const StubOptions& opt) {
   Controller c(opt);
   std::unique_ptr<Link> link;
   if (opt.link.can_bus.empty()) link = std::make_unique<LcmLink>(opt.link);
@@ -433,7 +370,7 @@ int run(const Options& opt) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options opt = parse(argc, argv);
+  const StubOptions opt = parse(argc, argv);
   try {
     return run(opt);
   } catch (const std::exception& e) {

@@ -34,11 +34,6 @@ using namespace mbrt::rt;
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: hil (--lcm URL | --can BUS [--can-log F]) [--rate HZ] [--duration S] [--report F.json]
-           [--state-channel C] [--command-channel C] [--command-timeout S] [--max-command-age S]
-           [--publish-every N] [--fifo PRIORITY] [--cpu N]
-)";
-
 // Commands taken per cycle at most: a flood cannot stretch a cycle unboundedly.
 constexpr int kMaxCommandsPerCycle = 32;
 // Over CAN a command takes kCommandFrames frames, and the bus carries our
@@ -48,35 +43,15 @@ constexpr int kMaxFramesPerCycle = 2 * kMaxCommandsPerCycle * (model::can::kComm
 // from the state it answers.
 constexpr std::size_t kPublishedStates = 1024;
 
-struct Options {
-  LinkOptions link{"", 1000.0, 5.0, "", model::kStateChannel, model::kCommandChannel, "", ""};
-  double command_timeout_s = 0.05;
-  double max_command_age_s = 0.05;
-  long publish_every = 1;
-  RealtimeOptions realtime;
-};
-
-Options parse(int argc, char** argv) {
-  Options o;
-  ProgramOptions args(argc, argv, kUsage);
-  while (args.next()) {
-    const std::string a = args.name();
-    if (read_link_option(args, o.link)) continue;
-    if (a == "--command-timeout") o.command_timeout_s = args.number();
-    else if (a == "--max-command-age") o.max_command_age_s = args.number();
-    else if (a == "--publish-every") o.publish_every = args.integer();
-    else if (a == "--fifo") o.realtime.fifo_priority = static_cast<int>(args.integer());
-    else if (a == "--cpu") o.realtime.cpu = static_cast<int>(args.integer());
-    else args.fail("unknown option '" + a + "'");
-  }
-  check_link_options(args, o.link);
-  if (!(o.command_timeout_s > 0.0) || !(o.max_command_age_s > 0.0)) args.fail("command timeouts must be > 0");
-  if (o.publish_every < 1) args.fail("--publish-every must be >= 1");
-  const double steps = 1.0 / (o.link.rate_hz * model::kStep);
-  if (std::abs(steps - std::round(steps)) > 1e-9 * steps || std::round(steps) < 1) {
-    args.fail("--rate " + std::to_string(o.link.rate_hz) + " Hz is not 1 / (k h) for the model's step h = " +
-              std::to_string(model::kStep) + " s; pick a rate that divides 1/h, or regenerate with --h");
-  }
+HilOptions parse(int argc, char** argv) {
+  HilOptions o;
+  o.link.state_channel = model::kStateChannel;
+  o.link.command_channel = model::kCommandChannel;
+  CLI::App app("hil: the model's step in a fixed-period real-time loop, exchanging states and commands over LCM or CAN",
+               "hil");
+  add_hil_options(app, o);
+  parse_or_exit(app, argc, argv);
+  if (const std::string why = check_hil_options(o, model::kStep); !why.empty()) fail(app, why);
   return o;
 }
 
@@ -192,7 +167,7 @@ void send_can_state(Loop& loop, CanLink& link, std::int64_t cycle) {
   }
 }
 
-int run(const Options& opt) {
+int run(const HilOptions& opt) {
   // On the heap: a large model's workspace would not fit a small thread stack.
   const auto loop_memory = std::make_unique<Loop>(GateTimes{seconds_to_ns(opt.command_timeout_s), seconds_to_ns(opt.max_command_age_s)});
   Loop& loop = *loop_memory;
@@ -244,7 +219,7 @@ int run(const Options& opt) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options opt = parse(argc, argv);
+  const HilOptions opt = parse(argc, argv);
   try {
     return run(opt);
   } catch (const std::exception& e) {  // start-up only: the loop throws nothing

@@ -1,63 +1,120 @@
 #include "mbrt/rt/program_options.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <stdexcept>
 
 namespace mbrt::rt {
 
-std::string ProgramOptions::text() {
-  const std::string option = name();
-  if (i_ + 1 >= argc_) fail(option + ": missing value");
-  return argv_[++i_];
+namespace {
+
+// A value that parses completely as a finite number (CLI11's own checks would
+// take "nan" and "inf", and word their errors by the type's limits) and
+// satisfies `ok`; otherwise "expected <what>, got '<text>'".
+template <class Ok>
+CLI::Validator number(const std::string& what, Ok ok) {
+  return CLI::Validator(
+      [what, ok](const std::string& text) {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        const bool parsed = !text.empty() && *end == '\0' && std::isfinite(x);
+        return parsed && ok(x) ? std::string() : "expected " + what + ", got '" + text + "'";
+      },
+      what);
 }
 
-double ProgramOptions::number() {
-  const std::string option = name(), value = text();
-  try {
-    std::size_t used = 0;
-    const double x = std::stod(value, &used);
-    if (used == value.size()) return x;
-  } catch (const std::exception&) {
+const CLI::Validator kFinite = number("a finite number", [](double) { return true; });
+const CLI::Validator kPositive = number("a finite number > 0", [](double x) { return x > 0.0; });
+const CLI::Validator kNonNegative = number("a finite number >= 0", [](double x) { return x >= 0.0; });
+const CLI::Validator kProbability = number("a probability in [0, 1]", [](double x) { return x >= 0.0 && x <= 1.0; });
+const CLI::Validator kCount = number("a whole number >= 1", [](double x) { return x >= 1.0 && x == std::floor(x); });
+const CLI::Validator kIndex = number("a whole number >= 0", [](double x) { return x >= 0.0 && x == std::floor(x); });
+
+void add_link_options(CLI::App& app, LinkOptions& link) {
+  app.add_option("--lcm", link.lcm_url, "LCM URL, e.g. udpm://239.255.76.67:7667?ttl=0");
+  app.add_option("--can", link.can_bus, "CAN bus: udp://GROUP:PORT, udp://[IPv6 GROUP]:PORT or a SocketCAN interface");
+  app.add_option("--can-log", link.can_log, "candump log of the frames sent and received");
+  app.add_option("--rate", link.rate_hz, "cycles per second")->check(kPositive);
+  app.add_option("--duration", link.duration_s, "run time, s")->check(kNonNegative);
+  app.add_option("--report", link.report, "also write the JSON report here");
+  app.add_option("--state-channel", link.state_channel, "LCM channel of the states");
+  app.add_option("--command-channel", link.command_channel, "LCM channel of the commands");
+}
+
+std::string check_link_options(const LinkOptions& link) {
+  if (link.lcm_url.empty() == link.can_bus.empty()) return "one of --lcm URL or --can BUS is required";
+  if (!link.can_log.empty() && link.can_bus.empty()) return "--can-log needs --can";
+  return "";
+}
+
+}  // namespace
+
+void add_hil_options(CLI::App& app, HilOptions& o) {
+  add_link_options(app, o.link);
+  app.add_option("--command-timeout", o.command_timeout_s, "a command older than this is stale, s")
+      ->check(kPositive);
+  app.add_option("--max-command-age", o.max_command_age_s, "a command answering an older state is refused, s")
+      ->check(kPositive);
+  app.add_option("--publish-every", o.publish_every, "publish the state every N cycles")->check(kCount);
+  app.add_option("--fifo", o.realtime.fifo_priority, "SCHED_FIFO priority, 1 to 99 (0: keep the default scheduler)")
+      ->check(number("a whole number in [0, 99]", [](double x) { return x >= 0.0 && x <= 99.0 && x == std::floor(x); }));
+  app.add_option("--cpu", o.realtime.cpu, "pin the loop to this CPU")->check(kIndex);
+}
+
+void add_stub_options(CLI::App& app, StubOptions& o) {
+  add_link_options(app, o.link);
+  app.add_option("--kp", o.kp, "proportional gain: one, or one per joint separated by commas")
+      ->delimiter(',')
+      ->check(kFinite);
+  app.add_option("--kd", o.kd, "derivative gain: one, or one per joint separated by commas")
+      ->delimiter(',')
+      ->check(kFinite);
+  app.add_option("--amplitude", o.amplitude, "reference amplitude, rad or m")->check(kFinite);
+  app.add_option("--frequency", o.frequency, "reference frequency, Hz")->check(kFinite);
+  app.add_option("--settle", o.settle_s, "hold the start for this long, s")->check(kNonNegative);
+  app.add_option("--delay-us", o.delay_us, "added latency per command, us")->check(kNonNegative);
+  app.add_option("--jitter-us", o.jitter_us, "random extra latency, us")->check(kNonNegative);
+  app.add_option("--seed", o.seed, "fault and jitter random seed")->check(kIndex);
+  app.add_option("--crash-after", o.crash_after_s, "exit without a report after this long, s")->check(kFinite);
+  app.add_option("--drop", o.faults.drop, "probability a command is dropped")->check(kProbability);
+  app.add_option("--duplicate", o.faults.duplicate, "probability a command is sent twice")->check(kProbability);
+  app.add_option("--reorder", o.faults.reorder, "probability a command is held back one cycle")->check(kProbability);
+  app.add_option("--garbage", o.faults.garbage, "probability a command is garbled")->check(kProbability);
+  app.add_option("--nan", o.faults.nan, "probability a command carries NaN")->check(kProbability);
+  app.add_option("--out-of-range", o.faults.out_of_range, "probability a command is out of range")->check(kProbability);
+}
+
+std::string check_hil_options(const HilOptions& o, double step) {
+  if (std::string why = check_link_options(o.link); !why.empty()) return why;
+  const double steps = 1.0 / (o.link.rate_hz * step);
+  if (std::abs(steps - std::round(steps)) > 1e-9 * steps || std::round(steps) < 1) {
+    return "--rate " + std::to_string(o.link.rate_hz) + " Hz is not 1 / (k h) for the model's step h = " +
+           std::to_string(step) + " s; pick a rate that divides 1/h, or regenerate with --h";
   }
-  fail(option + ": expected a number, got '" + value + "'");
+  return "";
 }
 
-long ProgramOptions::integer() {
-  const std::string option = name(), value = text();
+std::string check_stub_options(const StubOptions& o) { return check_link_options(o.link); }
+
+void parse_or_exit(CLI::App& app, int argc, char** argv) {
+  app.allow_extras();  // named below, one at a time, in the order given
   try {
-    std::size_t used = 0;
-    const long x = std::stol(value, &used);
-    if (used == value.size()) return x;
-  } catch (const std::exception&) {
+    app.parse(argc, argv);
+    const std::vector<std::string> extra = app.remaining();
+    if (!extra.empty()) {
+      fail(app, extra[0].rfind('-', 0) == 0 ? "unknown option '" + extra[0] + "'" : "unexpected argument '" + extra[0] + "'");
+    }
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    std::exit(0);
+  } catch (const CLI::ParseError& e) {
+    fail(app, e.what());
   }
-  fail(option + ": expected an integer, got '" + value + "'");
 }
 
-void ProgramOptions::fail(const std::string& why) const {
-  std::fprintf(stderr, "error: %s\n\n%s", why.c_str(), usage_);
+void fail(const CLI::App& app, const std::string& why) {
+  std::fprintf(stderr, "error: %s\n\n%s", why.c_str(), app.help().c_str());
   std::exit(2);
-}
-
-bool read_link_option(ProgramOptions& args, LinkOptions& link) {
-  const std::string a = args.name();
-  if (a == "--lcm") link.lcm_url = args.text();
-  else if (a == "--rate") link.rate_hz = args.number();
-  else if (a == "--duration") link.duration_s = args.number();
-  else if (a == "--report") link.report = args.text();
-  else if (a == "--state-channel") link.state_channel = args.text();
-  else if (a == "--command-channel") link.command_channel = args.text();
-  else if (a == "--can") link.can_bus = args.text();
-  else if (a == "--can-log") link.can_log = args.text();
-  else return false;
-  return true;
-}
-
-void check_link_options(ProgramOptions& args, const LinkOptions& link) {
-  if (link.lcm_url.empty() == link.can_bus.empty()) args.fail("one of --lcm URL or --can BUS is required");
-  if (!link.can_log.empty() && link.can_bus.empty()) args.fail("--can-log needs --can");
-  if (!(link.rate_hz > 0.0)) args.fail("--rate must be > 0");
-  if (!(link.duration_s >= 0.0)) args.fail("--duration must be >= 0");
 }
 
 bool write_report(const std::string& json, const std::string& path) {
