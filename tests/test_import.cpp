@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <iomanip>
 #include <map>
 #include <memory>
@@ -162,7 +163,95 @@ void check_against_mujoco(const std::string& source_name) {
   CHECK(std::abs(field(sim.out, "energy_final") - e1) <= 1e3 * kEnergyTol * std::max(1.0, std::abs(e1)));
 }
 
+// Writes `text` to the work directory as `name`; returns its path.
+std::string write(const std::string& name, const std::string& text) {
+  const fs::path file = fs::path(MBRT_TEST_WORK_DIR) / name;
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << text;
+  return file.string();
+}
+
+// `mbrt import SOURCE -o OUT`, stdout and stderr together.
+Run import(const std::string& source, const std::string& out = "imported.yaml") {
+  return mbrt("import '" + source + "' -o '" + (fs::path(MBRT_TEST_WORK_DIR) / out).string() + "' 2>&1");
+}
+
+constexpr const char* kRodLink = R"(<inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>)";
+
+std::string urdf_two_pins(const std::string& second_joint_extra) {
+  return std::string(R"(<robot name="pins"><link name="base"/><link name="a">)") + kRodLink +
+         R"(</link><link name="b">)" + kRodLink + R"(</link>
+      <joint name="pin_a" type="continuous"><parent link="base"/><child link="a"/><axis xyz="0 1 0"/></joint>
+      <joint name="pin_b" type="continuous"><parent link="a"/><child link="b"/><origin xyz="0 0 -1"/><axis xyz="0 1 0"/>)" +
+         second_joint_extra + "</joint></robot>";
+}
+
+constexpr const char* kMjcfFourBar = R"(<mujoco model="four_bar"><worldbody>
+  <body name="crank"><joint name="pin_a" type="hinge" axis="0 1 0"/><inertial pos="0 0 -0.5" mass="1" diaginertia="0.1 0.1 0.01"/>
+    <body name="coupler" pos="0 0 -1"><joint name="pin_b" type="hinge" axis="0 1 0"/><inertial pos="0.5 0 0" mass="1" diaginertia="0.01 0.1 0.1"/>
+      <body name="rocker" pos="1 0 0"><joint name="pin_c" type="hinge" axis="0 1 0"/><inertial pos="0 0 0.5" mass="1" diaginertia="0.1 0.1 0.01"/>
+  </body></body></body></worldbody>
+  <equality>%s</equality>%s</mujoco>)";
+
+std::string mjcf_four_bar(const std::string& equality, const std::string& extra = "") {
+  std::string text = kMjcfFourBar;
+  text.replace(text.find("%s"), 2, equality);
+  text.replace(text.find("%s"), 2, extra);
+  return text;
+}
+
 }  // namespace
+
+TEST_CASE("import refuses what mbrt cannot model, naming it, with exit 1") {
+  const Run mimic = import(write("mimic.urdf", urdf_two_pins(R"(<mimic joint="pin_a" multiplier="2"/>)")));
+  CHECK(mimic.exit_code == 1);
+  CHECK(mimic.out.find("joint 'pin_b' mimics joint 'pin_a'") != std::string::npos);
+
+  const Run broken = import(write("broken.urdf", "<robot name=\"x\"><link name=\"a\"></robot>"));
+  CHECK(broken.exit_code == 1);
+  CHECK(broken.out.find("broken.urdf: not a URDF file") != std::string::npos);
+
+  const Run bad_xml = import(write("bad.xml", "<mujoco>\n<worldbody>\n<body name=\"b\" nosuch=\"1\"/>\n</worldbody>\n</mujoco>"));
+  CHECK(bad_xml.exit_code == 1);
+  CHECK(bad_xml.out.find("bad.xml") != std::string::npos);
+  CHECK(bad_xml.out.find("line 3") != std::string::npos);
+
+  const Run coupling = import(write("coupling.xml", mjcf_four_bar(R"(<joint name="gear" joint1="pin_a" joint2="pin_c"/>)")));
+  CHECK(coupling.exit_code == 1);
+  CHECK(coupling.out.find("equality 'gear': only connect and weld") != std::string::npos);
+
+  const Run weld = import(write("weld.xml", mjcf_four_bar(R"(<weld name="glue" body1="crank" body2="rocker" relpose="0 0 0 1 0 0 0"/>)")));
+  CHECK(weld.exit_code == 1);
+  CHECK(weld.out.find("equality 'glue' is not satisfied at qpos0") != std::string::npos);
+}
+
+TEST_CASE("import names what it leaves out in warnings") {
+  const Run r = import(write("warned.xml", mjcf_four_bar(R"(<connect name="pin_d" body1="rocker" body2="world" anchor="0 0 1"/>)",
+                                                        R"(<actuator><motor name="drive" joint="pin_a"/></actuator>)")));
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("warning: ") != std::string::npos);
+  CHECK(r.out.find("1 actuators ('drive') are not imported") != std::string::npos);
+  const Run u = import(write("friction.urdf", urdf_two_pins(R"(<dynamics damping="0.1" friction="0.3"/>)")));
+  CHECK(u.exit_code == 0);
+  CHECK(u.out.find("joint 'pin_b': friction 0.3 is not supported") != std::string::npos);
+}
+
+TEST_CASE("a closed loop from a connect equality imports as a spherical joint and runs") {
+  const std::string source = write("four_bar.xml",
+      mjcf_four_bar(R"(<connect name="pin_d" body1="rocker" body2="world" anchor="0 0 1"/>)"));
+  REQUIRE(import(source, "four_bar.yaml").exit_code == 0);
+  std::ifstream in(fs::path(MBRT_TEST_WORK_DIR) / "four_bar.yaml");
+  const std::string yaml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(yaml.find("{name: pin_d, type: spherical, body1: rocker, body2: ground, point: [1, 0, 0]}") != std::string::npos);
+  CHECK(mbrt("sim '" + (fs::path(MBRT_TEST_WORK_DIR) / "four_bar.yaml").string() + "' --t-end 0.1").exit_code == 0);
+}
+
+TEST_CASE("import's command line errors exit 2") {
+  CHECK(mbrt("import 2>&1").exit_code == 2);
+  CHECK(mbrt("import arm.urdf 2>&1").exit_code == 2);
+  CHECK(mbrt("import arm.stl -o arm.yaml 2>&1").exit_code == 2);
+  CHECK(mbrt("import arm.urdf -o arm.yaml --nosuch 2>&1").exit_code == 2);
+}
 
 TEST_CASE("a URDF arm imported runs as MuJoCo runs the same file") { check_against_mujoco("urdf_arm.urdf"); }
 

@@ -197,7 +197,11 @@ class MjcfReader {
 ImportedModel import_mjcf(const std::string& path) {
   std::array<char, 1000> error{};
   const ModelPtr m(mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size())), &mj_deleteModel);
-  if (!m) throw std::runtime_error(path + ": " + error.data());
+  if (!m) {
+    std::string message = error.data();
+    message.erase(message.find_last_not_of(" \n") + 1);
+    throw std::runtime_error(path + ": " + message);
+  }
   const DataPtr d(mj_makeData(m.get()), &mj_deleteData);
   mj_forward(m.get(), d.get());  // kinematics at qpos0
   ImportedModel out;
