@@ -18,6 +18,8 @@ namespace mbrt::codegen {
 
 namespace {
 
+constexpr const char* kImportUsage = "mbrt import ROBOT.urdf|MODEL.xml -o MODEL.yaml\n";
+
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "error: import: %s\nusage: %s", message.c_str(), kImportUsage);
   return 2;

@@ -7,8 +7,6 @@
 
 namespace mbrt::codegen {
 
-inline constexpr const char* kImportUsage = "mbrt import ROBOT.urdf|MODEL.xml -o MODEL.yaml\n";
-
 // Runs the command on its arguments (those after "import"). Returns the exit
 // code: 0, or 2 for a bad command line or a missing parser library (printed
 // on stderr); throws std::runtime_error naming the file for a bad source.

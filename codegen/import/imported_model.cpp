@@ -1,8 +1,16 @@
 #include "imported_model.hpp"
 
+#include <array>
+#include <charconv>
 #include <stdexcept>
 
 namespace mbrt::codegen {
+
+std::string number_text(double x) {
+  std::array<char, 32> buf;
+  const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), x == 0.0 ? 0.0 : x).ptr;  // no -0
+  return std::string(buf.data(), end);
+}
 
 void merge_part(MassPart& into, const MassPart& part) {
   const double mass = into.mass + part.mass;

@@ -55,6 +55,9 @@ struct ImportedModel {
   std::vector<std::string> warnings;  // what the source has and the model has not (header and stderr)
 };
 
+// The shortest text that reads back as the same double (model file, messages).
+std::string number_text(double x);
+
 // Adds `part` to `into` (rigidly attached): total mass, combined centre of
 // mass, inertia about it (parallel-axis theorem).
 void merge_part(MassPart& into, const MassPart& part);

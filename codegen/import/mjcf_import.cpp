@@ -3,7 +3,6 @@
 #include <array>
 #include <cmath>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 
 #include <mujoco/mujoco.h>
@@ -20,12 +19,6 @@ Eigen::Vector3d vec3(const mjtNum* x) { return {x[0], x[1], x[2]}; }
 // mjData's row-major 3x3 matrices.
 Eigen::Matrix3d mat3(const mjtNum* x) {
   return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(x);
-}
-
-std::string number(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
 }
 
 class MjcfReader {
@@ -139,11 +132,11 @@ class MjcfReader {
     const int qpos = m_.jnt_qposadr[jnt];
     const std::string joint = "joint '" + name(mjOBJ_JOINT, jnt) + "'";
     if (m_.jnt_limited[jnt]) {
-      out_.warnings.push_back(joint + ": limits [" + number(m_.jnt_range[2 * jnt]) + ", " +
-                              number(m_.jnt_range[2 * jnt + 1]) + "] are not enforced (mbrt has no joint limits)");
+      out_.warnings.push_back(joint + ": limits [" + number_text(m_.jnt_range[2 * jnt]) + ", " +
+                              number_text(m_.jnt_range[2 * jnt + 1]) + "] are not enforced (mbrt has no joint limits)");
     }
     if (m_.dof_frictionloss[dof] != 0.0) {
-      out_.warnings.push_back(joint + ": frictionloss " + number(m_.dof_frictionloss[dof]) + " is not supported and left out");
+      out_.warnings.push_back(joint + ": frictionloss " + number_text(m_.dof_frictionloss[dof]) + " is not supported and left out");
     }
     const int type = m_.jnt_type[jnt];
     if (type == mjJNT_FREE || type == mjJNT_BALL) {
@@ -167,9 +160,11 @@ class MjcfReader {
       // MuJoCo's joint spring pulls towards qpos_spring (springref), mbrt's
       // towards rest measured from the position at t = 0 (qpos0).
       j.armature = m_.dof_armature[dof];
-      j.damping = m_.dof_damping[dof];
-      j.stiffness = m_.jnt_stiffness[jnt];
-      j.rest = j.stiffness != 0.0 ? m_.qpos_spring[qpos] - m_.qpos0[qpos] : 0.0;
+      if (!(m_.opt.disableflags & mjDSBL_PASSIVE)) {
+        j.damping = m_.dof_damping[dof];
+        j.stiffness = m_.jnt_stiffness[jnt];
+        j.rest = j.stiffness != 0.0 ? m_.qpos_spring[qpos] - m_.qpos0[qpos] : 0.0;
+      }
     }
     out_.joints.push_back(j);
   }
@@ -182,7 +177,7 @@ class MjcfReader {
     for (int r = 0; r < d_.nefc; ++r) {
       if (d_.efc_type[r] != mjCNSTR_EQUALITY || d_.efc_id[r] != e || std::abs(d_.efc_pos[r]) <= 1e-9) continue;
       throw std::runtime_error(out_.source + ": " + eq + " is not satisfied at qpos0 (residual " +
-                               number(d_.efc_pos[r]) + "); mbrt's joints hold the relative pose of t = 0");
+                               number_text(d_.efc_pos[r]) + "); mbrt's joints hold the relative pose of t = 0");
     }
   }
 

@@ -1,7 +1,5 @@
 #include "model_writer.hpp"
 
-#include <array>
-#include <charconv>
 #include <set>
 #include <sstream>
 
@@ -9,17 +7,10 @@ namespace mbrt::codegen {
 
 namespace {
 
-// Shortest text that reads back as the same double.
-std::string num(double x) {
-  std::array<char, 32> buf;
-  const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), x == 0.0 ? 0.0 : x).ptr;
-  return std::string(buf.data(), end);
-}
-
 template <typename Vector>
 std::string list(const Vector& v) {
   std::string s = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + num(v(i));
+  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number_text(v(i));
   return s + "]";
 }
 
@@ -75,7 +66,7 @@ std::string model_yaml(const ImportedModel& model) {
   for (const ImportedBody& b : model.bodies) {
     bodies.push_back(body_names.add(b.name));
     const Eigen::Quaterniond q = b.orientation.normalized();
-    o << "  - {name: " << bodies.back() << ", mass: " << num(b.mass.mass) << ", inertia: " << inertia(b)
+    o << "  - {name: " << bodies.back() << ", mass: " << number_text(b.mass.mass) << ", inertia: " << inertia(b)
       << ", position: " << list(b.mass.com) << ", orientation: " << list(Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()))
       << "}" << renamed(bodies.back(), b.name) << "\n";
   }
@@ -91,7 +82,7 @@ std::string model_yaml(const ImportedModel& model) {
     if (j.type == JointType::revolute || j.type == JointType::prismatic || j.type == JointType::planar) {
       o << ", axis: " << list(j.axis);
     }
-    if (j.armature != 0.0) o << ", armature: " << num(j.armature);
+    if (j.armature != 0.0) o << ", armature: " << number_text(j.armature);
     o << "}" << renamed(joints.back(), j.name) << "\n";
   }
 
@@ -101,10 +92,10 @@ std::string model_yaml(const ImportedModel& model) {
     if (j.stiffness == 0.0 && j.damping == 0.0) continue;
     if (!forces) o << "forces:\n";
     forces = true;
-    o << "  - {type: joint_spring, joint: " << joints[i] << ", stiffness: " << num(j.stiffness)
-      << ", damping: " << num(j.damping) << ", rest: " << num(j.rest) << "}\n";
+    o << "  - {type: joint_spring, joint: " << joints[i] << ", stiffness: " << number_text(j.stiffness)
+      << ", damping: " << number_text(j.damping) << ", rest: " << number_text(j.rest) << "}\n";
   }
-  if (model.step) o << "solver: {step: " << num(*model.step) << "}\n";
+  if (model.step) o << "solver: {step: " << number_text(*model.step) << "}\n";
   return o.str();
 }
 

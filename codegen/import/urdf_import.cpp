@@ -1,6 +1,5 @@
 #include "urdf_import.hpp"
 
-#include <sstream>
 #include <stdexcept>
 
 #include <urdf_parser/urdf_parser.h>
@@ -14,12 +13,6 @@ Eigen::Isometry3d isometry(const urdf::Pose& p) {
   t.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z).normalized().toRotationMatrix();
   t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
   return t;
-}
-
-std::string number(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
 }
 
 // A link's <inertial> in world axes; its origin is in the link frame, and
@@ -91,8 +84,8 @@ class UrdfReader {
     else if (joint.type == urdf::Joint::PLANAR) j.type = JointType::planar;
     else throw std::runtime_error(where + ": unknown joint type");
     if (joint.limits && joint.type != urdf::Joint::CONTINUOUS) {
-      out_.warnings.push_back("joint '" + joint.name + "': limits [" + number(joint.limits->lower) + ", " +
-                              number(joint.limits->upper) + "] are not enforced (mbrt has no joint limits)");
+      out_.warnings.push_back("joint '" + joint.name + "': limits [" + number_text(joint.limits->lower) + ", " +
+                              number_text(joint.limits->upper) + "] are not enforced (mbrt has no joint limits)");
     }
     if (joint.dynamics) add_dynamics(joint, j);
     out_.joints.push_back(j);
@@ -102,7 +95,7 @@ class UrdfReader {
   // <dynamics damping>: a joint_spring without stiffness; friction: a warning.
   void add_dynamics(const urdf::Joint& joint, ImportedJoint& j) {
     if (joint.dynamics->friction != 0.0) {
-      out_.warnings.push_back("joint '" + joint.name + "': friction " + number(joint.dynamics->friction) +
+      out_.warnings.push_back("joint '" + joint.name + "': friction " + number_text(joint.dynamics->friction) +
                               " is not supported and left out");
     }
     if (joint.dynamics->damping == 0.0) return;
