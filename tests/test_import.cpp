@@ -1,6 +1,7 @@
 // `mbrt import` checked against MuJoCo loading the same file: a URDF and an
-// MJCF spatial arm (tests/models/import/) are imported, run with
-// `mbrt sim --scheme rk4-tree --h 1e-4`, and compared with MuJoCo's RK4 at
+// MJCF spatial arm and an MJCF ball joint and free body (tests/models/import/)
+// are imported, run with `mbrt sim --scheme rk4-tree --h 1e-4` (rk4-projected
+// for the ball joint), and compared with MuJoCo's RK4 at
 // the same step: the initial and final energy (mj_energyPos + mj_energyVel)
 // and every body's centre of mass over 0.5 s (docs/import.md).
 #include <doctest/doctest.h>
@@ -122,14 +123,14 @@ struct MuJoCo {
   }
 };
 
-void check_against_mujoco(const std::string& source_name) {
+void check_against_mujoco(const std::string& source_name, const std::string& scheme) {
   const fs::path work = fs::path(MBRT_TEST_WORK_DIR);
   fs::create_directories(work);
   const std::string source = std::string(MBRT_TEST_MODELS) + "/import/" + source_name;
   const fs::path yaml = work / (fs::path(source_name).stem().string() + ".yaml");
   const fs::path csv = work / (fs::path(source_name).stem().string() + ".csv");
   REQUIRE(mbrt("import '" + source + "' -o '" + yaml.string() + "'").exit_code == 0);
-  const Run sim = mbrt("sim '" + yaml.string() + "' --scheme rk4-tree --h 1e-4 --t-end 0.5 --every " +
+  const Run sim = mbrt("sim '" + yaml.string() + "' --scheme " + scheme + " --h 1e-4 --t-end 0.5 --every " +
                        std::to_string(kEvery) + " --out '" + csv.string() + "'");
   REQUIRE(sim.exit_code == 0);
 
@@ -253,6 +254,11 @@ TEST_CASE("import's command line errors exit 2") {
   CHECK(mbrt("import arm.urdf -o arm.yaml --nosuch 2>&1").exit_code == 2);
 }
 
-TEST_CASE("a URDF arm imported runs as MuJoCo runs the same file") { check_against_mujoco("urdf_arm.urdf"); }
+TEST_CASE("a URDF arm imported runs as MuJoCo runs the same file") { check_against_mujoco("urdf_arm.urdf", "rk4-tree"); }
 
-TEST_CASE("an MJCF arm imported runs as MuJoCo runs the same file") { check_against_mujoco("mjcf_arm.xml"); }
+TEST_CASE("an MJCF arm imported runs as MuJoCo runs the same file") { check_against_mujoco("mjcf_arm.xml", "rk4-tree"); }
+
+// A ball joint and a free body: absolute coordinates, fourth order.
+TEST_CASE("an MJCF ball joint and free body imported run as MuJoCo runs them") {
+  check_against_mujoco("mjcf_ball.xml", "rk4-projected");
+}

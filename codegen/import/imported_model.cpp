@@ -29,7 +29,7 @@ void merge_part(MassPart& into, const MassPart& part) {
 void require_masses(const ImportedModel& model, const std::string& what_has_mass) {
   for (const ImportedBody& b : model.bodies) {
     if (!(b.mass.mass > 0.0)) {
-      throw std::runtime_error(model.source + ": " + b.name + " has no mass (" + what_has_mass +
+      throw std::runtime_error(model.source + ": '" + b.name + "' has no mass (" + what_has_mass +
                                "); mbrt's moving bodies need one, so give it mass or fix it to its parent");
     }
   }

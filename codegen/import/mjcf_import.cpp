@@ -145,7 +145,7 @@ class MjcfReader {
                                 std::string(type == mjJNT_FREE ? "free" : "ball") + " joint are not supported and left out");
       }
       if (type == mjJNT_FREE) {
-        out_.notes.push_back(body + " (free joint " + joint + ") is a free body");
+        out_.notes.push_back(body + " (free " + joint + ") is a free body");
         return;
       }
     }
