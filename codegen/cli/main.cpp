@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "generate.hpp"
+#include "import_command.hpp"
 #include "sim_runner.hpp"
 #include "step_report.hpp"
 
@@ -28,6 +29,7 @@ constexpr const char* kUsage = R"(usage:
                       [--kp K] [--kd K] [--amplitude A] [--frequency F] [--settle S]
                       [--delay-us D] [--jitter-us J] [--seed N] [--crash-after S]
                       [--drop P] [--duplicate P] [--reorder P] [--garbage P] [--nan P] [--out-of-range P]
+  mbrt import ROBOT.urdf|MODEL.xml -o MODEL.yaml
 
 gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
 outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp).
@@ -44,6 +46,7 @@ commands over LCM or a CAN bus (BUS: udp://GROUP:PORT, udp://[IPv6 GROUP]:PORT
 or a SocketCAN interface such as vcan0; --can-fd: CAN FD frames of up to 64 bytes, which hil and stub
 must both be given); stub runs a PD controller for it; both print a JSON report.
 See docs/hil.md.
+import writes a URDF or MJCF file as a model file (docs/import.md).
 )";
 
 struct UsageError : std::runtime_error {
@@ -109,6 +112,7 @@ int run(const std::vector<std::string>& args) {
     return args.empty() ? 2 : 0;
   }
   const std::string command = args[0];
+  if (command == "import") return mbrt::codegen::run_import({args.begin() + 1, args.end()});
   if (command != "gen" && command != "sim" && command != "hil" && command != "stub") {
     throw UsageError("unknown command '" + command + "'");
   }
