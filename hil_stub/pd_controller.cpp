@@ -51,7 +51,7 @@ StubOptions parse(int argc, char** argv) {
   CLI::App app("stub: a PD controller with fault injection for a model running in `mbrt hil`", "pd_controller");
   add_stub_options(app, o);
   parse_or_exit(app, argc, argv);
-  if (const std::string why = check_stub_options(o); !why.empty()) fail(app, why);
+  if (const std::string why = check_link_options(o.link); !why.empty()) fail(app, why);
   return o;
 }
 

@@ -6,13 +6,9 @@
 
 namespace mbrt::rt {
 
-namespace {
-
-// A value that parses completely as a finite number (CLI11's own checks would
-// take "nan" and "inf", and word their errors by the type's limits) and
-// satisfies `ok`; otherwise "expected <what>, got '<text>'".
-template <class Ok>
-CLI::Validator number(const std::string& what, Ok ok) {
+// CLI11's own checks would take "nan" and "inf", and word their errors by the
+// type's limits.
+CLI::Validator number_check(const std::string& what, std::function<bool(double)> ok) {
   return CLI::Validator(
       [what, ok](const std::string& text) {
         char* end = nullptr;
@@ -23,12 +19,14 @@ CLI::Validator number(const std::string& what, Ok ok) {
       what);
 }
 
-const CLI::Validator kFinite = number("a finite number", [](double) { return true; });
-const CLI::Validator kPositive = number("a finite number > 0", [](double x) { return x > 0.0; });
-const CLI::Validator kNonNegative = number("a finite number >= 0", [](double x) { return x >= 0.0; });
-const CLI::Validator kProbability = number("a probability in [0, 1]", [](double x) { return x >= 0.0 && x <= 1.0; });
-const CLI::Validator kCount = number("a whole number >= 1", [](double x) { return x >= 1.0 && x == std::floor(x); });
-const CLI::Validator kIndex = number("a whole number >= 0", [](double x) { return x >= 0.0 && x == std::floor(x); });
+namespace {
+
+const CLI::Validator kFinite = number_check("a finite number", [](double) { return true; });
+const CLI::Validator kPositive = number_check("a finite number > 0", [](double x) { return x > 0.0; });
+const CLI::Validator kNonNegative = number_check("a finite number >= 0", [](double x) { return x >= 0.0; });
+const CLI::Validator kProbability = number_check("a probability in [0, 1]", [](double x) { return x >= 0.0 && x <= 1.0; });
+const CLI::Validator kCount = number_check("a whole number >= 1", [](double x) { return x >= 1.0 && x == std::floor(x); });
+const CLI::Validator kIndex = number_check("a whole number >= 0", [](double x) { return x >= 0.0 && x == std::floor(x); });
 
 void add_link_options(CLI::App& app, LinkOptions& link) {
   app.add_option("--lcm", link.lcm_url, "LCM URL, e.g. udpm://239.255.76.67:7667?ttl=0");
@@ -41,12 +39,6 @@ void add_link_options(CLI::App& app, LinkOptions& link) {
   app.add_option("--command-channel", link.command_channel, "LCM channel of the commands");
 }
 
-std::string check_link_options(const LinkOptions& link) {
-  if (link.lcm_url.empty() == link.can_bus.empty()) return "one of --lcm URL or --can BUS is required";
-  if (!link.can_log.empty() && link.can_bus.empty()) return "--can-log needs --can";
-  return "";
-}
-
 }  // namespace
 
 void add_hil_options(CLI::App& app, HilOptions& o) {
@@ -57,7 +49,7 @@ void add_hil_options(CLI::App& app, HilOptions& o) {
       ->check(kPositive);
   app.add_option("--publish-every", o.publish_every, "publish the state every N cycles")->check(kCount);
   app.add_option("--fifo", o.realtime.fifo_priority, "SCHED_FIFO priority, 1 to 99 (0: keep the default scheduler)")
-      ->check(number("a whole number in [0, 99]", [](double x) { return x >= 0.0 && x <= 99.0 && x == std::floor(x); }));
+      ->check(number_check("a whole number in [0, 99]", [](double x) { return x >= 0.0 && x <= 99.0 && x == std::floor(x); }));
   app.add_option("--cpu", o.realtime.cpu, "pin the loop to this CPU")->check(kIndex);
 }
 
@@ -84,17 +76,25 @@ void add_stub_options(CLI::App& app, StubOptions& o) {
   app.add_option("--out-of-range", o.faults.out_of_range, "probability a command is out of range")->check(kProbability);
 }
 
-std::string check_hil_options(const HilOptions& o, double step) {
-  if (std::string why = check_link_options(o.link); !why.empty()) return why;
-  const double steps = 1.0 / (o.link.rate_hz * step);
+std::string check_link_options(const LinkOptions& link) {
+  if (link.lcm_url.empty() == link.can_bus.empty()) return "one of --lcm URL or --can BUS is required";
+  if (!link.can_log.empty() && link.can_bus.empty()) return "--can-log needs --can";
+  return "";
+}
+
+std::string check_rate(double rate_hz, double step) {
+  const double steps = 1.0 / (rate_hz * step);
   if (std::abs(steps - std::round(steps)) > 1e-9 * steps || std::round(steps) < 1) {
-    return "--rate " + std::to_string(o.link.rate_hz) + " Hz is not 1 / (k h) for the model's step h = " +
+    return "--rate " + std::to_string(rate_hz) + " Hz is not 1 / (k h) for the model's step h = " +
            std::to_string(step) + " s; pick a rate that divides 1/h, or regenerate with --h";
   }
   return "";
 }
 
-std::string check_stub_options(const StubOptions& o) { return check_link_options(o.link); }
+std::string check_hil_options(const HilOptions& o, double step) {
+  const std::string why = check_link_options(o.link);
+  return why.empty() ? check_rate(o.link.rate_hz, step) : why;
+}
 
 void parse_or_exit(CLI::App& app, int argc, char** argv) {
   app.allow_extras();  // named below, one at a time, in the order given

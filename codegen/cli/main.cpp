@@ -1,183 +1,217 @@
-// mbrt: generate a model's allocation-free step, or generate, compile and run it.
+// mbrt: generate a model's allocation-free step, or generate, compile and run
+// it; import a URDF or MJCF file as a model file. The command line is read
+// with CLI11; every value is checked before anything is generated or
+// compiled, and a mistake exits with status 2 naming the option.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "generate.hpp"
 #include "import_command.hpp"
+#include "mbrt/rt/program_options.hpp"
 #include "sim_runner.hpp"
 #include "step_report.hpp"
 
 namespace {
 
-constexpr const char* kUsage = R"(usage:
-  mbrt gen MODEL.yaml -o DIR [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
-                      [--ali3p-projection bayo|cuadrado] [--ali3p-integrator trapezoidal|generalized_alpha] [--can-fd]
-                      [--no-specialize[=NAME,...]] [--report]
-  mbrt sim MODEL.yaml [--scheme S] [--h H] [--euler-updates K] [--project-initial] [--name N]
-                      [--ali3p-projection P] [--ali3p-integrator I] [--can-fd] [--no-specialize[=NAME,...]]
-                      [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--verbose]
-  mbrt hil MODEL.yaml [generation options] (--lcm URL | --can BUS [--can-log F])
-                      [--rate HZ] [--duration S] [--report F.json] [--state-channel C] [--command-channel C]
-                      [--command-timeout S] [--max-command-age S] [--publish-every N] [--fifo PRIORITY] [--cpu N]
-  mbrt stub MODEL.yaml [generation options] (--lcm URL | --can BUS) [--rate HZ] [--duration S] [--report F.json]
-                      [--kp K] [--kd K] [--amplitude A] [--frequency F] [--settle S]
-                      [--delay-us D] [--jitter-us J] [--seed N] [--crash-after S]
-                      [--drop P] [--duplicate P] [--reorder P] [--garbage P] [--nan P] [--out-of-range P]
-  mbrt import ROBOT.urdf|MODEL.xml -o MODEL.yaml
+using mbrt::rt::number_check;
 
-gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
-outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp).
---no-specialize generates the general step, without the specializations the
-scene would allow; --no-specialize=NAME,... turns off only those named
-(principal_axes, isotropic, single_stage, gravity_free, folded_weights,
-unloaded_bodies, no_drivers, sparse_factor, planar). gen --report prints, as JSON,
-the specializations that applied, the step's floating-point operations and
-instructions, its code size and predicted time (docs/specializations.md).
-sim generates, compiles (cached by content hash under $MBRT_CACHE_DIR or
-~/.cache/mbrt) and runs the model; its last line on stdout is a JSON summary.
-hil runs the model in a real-time loop that publishes its outputs and takes
-commands over LCM or a CAN bus (BUS: udp://GROUP:PORT, udp://[IPv6 GROUP]:PORT
-or a SocketCAN interface such as vcan0; --can-fd: CAN FD frames of up to 64 bytes, which hil and stub
-must both be given); stub runs a PD controller for it; both print a JSON report.
-See docs/hil.md.
-import writes a URDF or MJCF file as a model file (docs/import.md).
-)";
+constexpr const char* kDescription = R"(mbrt: a multibody model's fixed-step, allocation-free step() as C++.
+  gen     writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and outputs,
+          DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp);
+          --report prints, as JSON, the specializations that applied, the step's floating-point
+          operations and instructions, its code size and predicted time (docs/specializations.md)
+  sim     generates, compiles (cached by content hash under $MBRT_CACHE_DIR or ~/.cache/mbrt) and
+          runs the model; its last line on stdout is a JSON summary
+  hil     runs the model in a real-time loop that publishes its outputs and takes commands over
+          LCM or a CAN bus; stub runs a PD controller for it; both print a JSON report (docs/hil.md)
+  import  writes a URDF or MJCF file as a model file (docs/import.md)
+`mbrt COMMAND --help` lists a command's options.)";
 
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-double parse_number(const std::string& flag, const std::string& text) {
-  try {
-    size_t used = 0;
-    const double x = std::stod(text, &used);
-    if (used == text.size()) return x;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + ": expected a number, got '" + text + "'");
+// The generation options every command but import takes.
+void add_generate_options(CLI::App& app, mbrt::codegen::GenerateOptions& gen, std::vector<std::string>& no_specialize) {
+  app.add_option_function<std::string>("--scheme", [&gen](const std::string& s) { gen.scheme = s; },
+                                       "the scheme, overriding solver.scheme");
+  app.add_option_function<double>("--h", [&gen](double h) { gen.step = h; }, "the step, s, overriding solver.step")
+      ->check(number_check("a number", [](double) { return true; }));
+  app.add_option_function<double>("--euler-updates", [&gen](double k) { gen.euler_updates = static_cast<int>(k); },
+                                  "Euler-parameter updates per step, overriding solver.euler_updates")
+      ->check(number_check("an integer", [](double k) { return k == std::floor(k) && std::abs(k) < 1e9; }));
+  app.add_flag("--project-initial", gen.project_initial, "project the initial state onto the constraints");
+  app.add_flag("--can-fd", gen.can_fd, "the CAN layout in CAN FD frames of up to 64 bytes");
+  app.add_option_function<std::string>("--name", [&gen](const std::string& n) { gen.name = n; },
+                                       "rename the model and its C++ namespace");
+  app.add_option_function<std::string>("--ali3p-projection", [&gen](const std::string& p) { gen.ali3p_projection = p; },
+                                       "bayo or cuadrado");
+  app.add_option_function<std::string>("--ali3p-integrator", [&gen](const std::string& i) { gen.ali3p_integrator = i; },
+                                       "trapezoidal or generalized_alpha");
+  app.add_flag("--no-specialize{all}", no_specialize,
+               "generate the general step; =NAME,... only without those specializations (principal_axes, isotropic, "
+               "single_stage, gravity_free, folded_weights, unloaded_bodies, no_drivers, sparse_factor, planar)");
 }
 
-int parse_integer(const std::string& flag, const std::string& text) {
-  try {
-    size_t used = 0;
-    const int x = std::stoi(text, &used);
-    if (used == text.size()) return x;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + ": expected an integer, got '" + text + "'");
-}
-
-// sim's run options, checked before anything is generated or compiled; the
-// driver gets the text as given, at full precision.
-const std::string& run_time(const std::string& flag, const std::string& text) {
-  const double x = parse_number(flag, text);
-  if (!(x >= 0.0 && std::isfinite(x))) throw UsageError(flag + ": expected a finite time >= 0 s, got '" + text + "'");
-  return text;
-}
-
-const std::string& output_interval(const std::string& flag, const std::string& text) {
-  if (parse_integer(flag, text) < 1) throw UsageError(flag + ": expected an integer >= 1 (steps), got '" + text + "'");
-  return text;
-}
-
-const std::string& output_file(const std::string& flag, const std::string& text) {
-  const std::filesystem::path dir = std::filesystem::absolute(text).parent_path();
-  if (!std::filesystem::is_directory(dir)) throw UsageError(flag + ": no directory " + dir.string() + " for '" + text + "'");
-  return text;
-}
-
-// --no-specialize=NAME,...: clears the flags named.
-void turn_off(const std::string& names, mbrt::codegen::Specializations& s) {
-  std::stringstream list(names);
-  for (std::string name; std::getline(list, name, ',');) {
-    bool known = false;
-    for (const auto& [n, flag] : mbrt::codegen::kSpecializationNames) {
-      if (name != n) continue;
-      s.*flag = false;
-      known = true;
+// --no-specialize (given as "all") or --no-specialize=NAME,...: clears the flags named.
+void turn_off(const std::vector<std::string>& given, mbrt::codegen::Specializations& s) {
+  for (const std::string& names : given) {
+    if (names == "all") {
+      s = mbrt::codegen::Specializations::none();
+      continue;
     }
-    if (!known) throw UsageError("--no-specialize: unknown specialization '" + name + "'");
+    std::stringstream list(names);
+    for (std::string name; std::getline(list, name, ',');) {
+      bool known = false;
+      for (const auto& [n, flag] : mbrt::codegen::kSpecializationNames) {
+        if (name != n) continue;
+        s.*flag = false;
+        known = true;
+      }
+      if (!known) throw CLI::ValidationError("--no-specialize", "unknown specialization '" + name + "'");
+    }
   }
 }
 
-int run(const std::vector<std::string>& args) {
-  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-    std::fputs(kUsage, args.empty() ? stderr : stdout);
-    return args.empty() ? 2 : 0;
+// The options a compiled program (hil's loop, the stub) reads again: given
+// ones are passed on as written.
+std::vector<std::string> given_options(const CLI::App& app, const std::set<const CLI::Option*>& program) {
+  std::vector<std::string> args;
+  for (const CLI::Option* o : app.get_options()) {
+    if (!program.count(o)) continue;
+    for (const std::string& value : o->results()) args.insert(args.end(), {o->get_name(), value});
   }
-  const std::string command = args[0];
-  if (command == "import") return mbrt::codegen::run_import({args.begin() + 1, args.end()});
-  if (command != "gen" && command != "sim" && command != "hil" && command != "stub") {
-    throw UsageError("unknown command '" + command + "'");
-  }
-  const bool program_options = command == "hil" || command == "stub";  // checked by the program itself
-  std::string model_path, out_dir;
-  bool report = false;
+  return args;
+}
+
+[[noreturn]] void usage_error(const CLI::App& app, const std::string& why) {
+  std::fprintf(stderr, "error: %s\n\n%s", why.c_str(), app.help().c_str());
+  std::exit(2);
+}
+
+int run(int argc, char** argv) {
+  using mbrt::codegen::Program;
+  CLI::App app(kDescription, "mbrt");
+  app.require_subcommand(1);
+
   mbrt::codegen::SimOptions sim;
   mbrt::codegen::GenerateOptions& gen = sim.generate;
-  for (size_t i = 1; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + ": missing value");
-      return args[++i];
-    };
-    if (a == "--scheme") gen.scheme = value();
-    else if (a == "--h") gen.step = parse_number(a, value());
-    else if (a == "--euler-updates") gen.euler_updates = parse_integer(a, value());
-    else if (a == "--project-initial") gen.project_initial = true;
-    else if (a == "--can-fd") gen.can_fd = true;
-    else if (a == "--name") gen.name = value();
-    else if (a == "--ali3p-projection") gen.ali3p_projection = value();
-    else if (a == "--ali3p-integrator") gen.ali3p_integrator = value();
-    else if (a == "--no-specialize") gen.specialize = mbrt::codegen::Specializations::none();
-    else if (a.rfind("--no-specialize=", 0) == 0) turn_off(a.substr(16), gen.specialize);
-    else if (command == "gen" && a == "--report") report = true;
-    else if (command == "gen" && a == "-o") out_dir = value();
-    else if (command == "sim" && a == "--t-end") sim.driver_args.insert(sim.driver_args.end(), {a, run_time(a, value())});
-    else if (command == "sim" && a == "--every") sim.driver_args.insert(sim.driver_args.end(), {a, output_interval(a, value())});
-    else if (command == "sim" && a == "--out") sim.driver_args.insert(sim.driver_args.end(), {a, output_file(a, value())});
-    else if (command == "sim" && (a == "--velocities" || a == "--reactions")) sim.driver_args.push_back(a);
-    else if (command != "gen" && a == "--verbose") sim.verbose = true;
-    else if (program_options && a.rfind("--", 0) == 0) {
-      sim.driver_args.push_back(a);  // every program option takes a value
-      if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) sim.driver_args.push_back(args[++i]);
-    }
-    else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' for " + command);
-    else if (model_path.empty()) model_path = a;
-    else throw UsageError("unexpected argument '" + a + "'");
+  std::string model_path, out_dir;
+  bool report = false;
+  std::vector<std::string> no_specialize;
+  mbrt::rt::HilOptions hil;
+  mbrt::rt::StubOptions stub;
+  std::set<const CLI::Option*> program_options;  // hil's or the stub's, checked here and by the program
+
+  CLI::App* gen_cmd = app.add_subcommand("gen", "generate a model's step");
+  CLI::App* sim_cmd = app.add_subcommand("sim", "generate, compile and run a model");
+  CLI::App* hil_cmd = app.add_subcommand("hil", "run a model in a real-time loop over LCM or CAN");
+  CLI::App* stub_cmd = app.add_subcommand("stub", "run a PD controller with fault injection for a model in hil");
+  for (CLI::App* cmd : {gen_cmd, sim_cmd, hil_cmd, stub_cmd}) {
+    cmd->add_option("MODEL", model_path, "the model file (.yaml)")->required();
+    add_generate_options(*cmd, gen, no_specialize);
   }
-  if (model_path.empty()) throw UsageError(command + ": missing MODEL.yaml");
+  gen_cmd->add_option("-o", out_dir, "the directory to write into")->required();
+  gen_cmd->add_flag("--report", report, "print what the step costs and what was left out, as JSON");
+
+  // sim's run options, checked here; the program gets the text as given, at full precision.
+  const auto forward = [&sim](const std::string& flag) {
+    return [&sim, flag](const std::string& value) { sim.driver_args.insert(sim.driver_args.end(), {flag, value}); };
+  };
+  sim_cmd->add_option_function<std::string>("--t-end", forward("--t-end"), "run to this time, s (default 1)")
+      ->check(number_check("a finite time >= 0 s", [](double t) { return t >= 0.0; }));
+  sim_cmd->add_option_function<std::string>("--every", forward("--every"), "write every N-th step (default 1)")
+      ->check(number_check("an integer", [](double n) { return n == std::floor(n); }) &
+              number_check("an integer >= 1 (steps)", [](double n) { return n >= 1.0; }));
+  sim_cmd->add_option_function<std::string>("--out", forward("--out"), "write the trajectory to this CSV file")
+      ->check(CLI::Validator(
+          [](const std::string& file) {
+            const std::filesystem::path dir = std::filesystem::absolute(file).parent_path();
+            return std::filesystem::is_directory(dir) ? std::string()
+                                                      : "no directory " + dir.string() + " for '" + file + "'";
+          },
+          "FILE"));
+  for (const char* flag : {"--velocities", "--reactions"}) {
+    sim_cmd->add_flag_callback(flag, [&sim, flag]() { sim.driver_args.push_back(flag); },
+                               flag == std::string("--velocities") ? "add the velocities to the CSV"
+                                                                   : "add the joints' reactions to the CSV");
+  }
+  for (CLI::App* cmd : {sim_cmd, hil_cmd, stub_cmd}) cmd->add_flag("--verbose", sim.verbose, "show the compiler's command");
+
+  const auto add_program_options = [&program_options](CLI::App& cmd, const auto& add) {
+    const size_t before = cmd.get_options().size();
+    add();
+    const std::vector<const CLI::Option*> all = std::as_const(cmd).get_options();
+    program_options.insert(all.begin() + static_cast<std::ptrdiff_t>(before), all.end());
+  };
+  add_program_options(*hil_cmd, [&] { mbrt::rt::add_hil_options(*hil_cmd, hil); });
+  add_program_options(*stub_cmd, [&] { mbrt::rt::add_stub_options(*stub_cmd, stub); });
+
+  CLI::App* import_cmd = app.add_subcommand("import", "write a URDF (.urdf) or MJCF (.xml) file as a model file");
+  std::string import_source, import_out;
+  import_cmd->add_option("SOURCE", import_source, "ROBOT.urdf or MODEL.xml")->required();
+  import_cmd->add_option("-o", import_out, "the model file to write (.yaml)")->required();
+
+  for (CLI::App* cmd : app.get_subcommands({})) cmd->allow_extras();  // named below, one at a time
+  try {
+    const std::vector<CLI::App*> commands = app.get_subcommands({});
+    const auto named = [&](CLI::App* c) { return c->get_name() == argv[1]; };
+    if (argc > 1 && argv[1][0] != '-' && std::none_of(commands.begin(), commands.end(), named)) {
+      throw CLI::ParseError("unknown command '" + std::string(argv[1]) + "'", CLI::ExitCodes::ExtrasError);
+    }
+    app.parse(argc, argv);
+    const std::vector<std::string> extra = app.get_subcommands().front()->remaining();
+    if (!extra.empty()) {
+      throw CLI::ParseError((extra[0].rfind('-', 0) == 0 ? "unknown option '" : "unexpected argument '") + extra[0] +
+                                "' for " + app.get_subcommands().front()->get_name(),
+                            CLI::ExitCodes::ExtrasError);
+    }
+    turn_off(no_specialize, gen.specialize);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    const std::vector<CLI::App*> used = app.get_subcommands();
+    usage_error(used.empty() ? app : *used.front(), e.what());
+  }
+
+  if (import_cmd->parsed()) return mbrt::codegen::run_import(import_source, import_out);
+  CLI::App& cmd = *app.get_subcommands().front();
   try {
     mbrt::codegen::check_generate_options(gen);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+    usage_error(cmd, e.what());
   }
-  if (command == "gen") {
-    if (out_dir.empty()) throw UsageError("gen: missing -o DIR");
-    const mbrt::codegen::Generated g = mbrt::codegen::generate(model_path, gen);
+  const mbrt::rt::LinkOptions& link = hil_cmd->parsed() ? hil.link : stub.link;
+  if (hil_cmd->parsed() || stub_cmd->parsed()) {
+    if (const std::string why = mbrt::rt::check_link_options(link); !why.empty()) usage_error(cmd, why);
+  }
+  const mbrt::codegen::Generated g = mbrt::codegen::generate(model_path, gen);
+  if (gen_cmd->parsed()) {
     mbrt::codegen::write_generated(g.code, out_dir);
     if (report) std::puts(mbrt::codegen::report_json(mbrt::codegen::report_step(g, sim)).c_str());
     return 0;
   }
-  using mbrt::codegen::Program;
-  const Program program = command == "sim" ? Program::sim : command == "hil" ? Program::hil : Program::pd_controller;
-  return mbrt::codegen::run_program(program, model_path, sim);
+  if (hil_cmd->parsed()) {
+    if (const std::string why = mbrt::rt::check_rate(hil.link.rate_hz, g.model.solver.step); !why.empty()) usage_error(cmd, why);
+  }
+  const std::vector<std::string> program_args = given_options(cmd, program_options);
+  sim.driver_args.insert(sim.driver_args.end(), program_args.begin(), program_args.end());
+  const Program program = sim_cmd->parsed() ? Program::sim : hil_cmd->parsed() ? Program::hil : Program::pd_controller;
+  return mbrt::codegen::run_program(program, g, sim);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
-    return run(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "error: %s\n\n%s", e.what(), kUsage);
-    return 2;
+    return run(argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -167,8 +167,7 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
   return exe.string();
 }
 
-int run_program(Program program, const std::string& model_path, const SimOptions& options) {
-  const Generated g = generate(model_path, options.generate);
+int run_program(Program program, const Generated& g, const SimOptions& options) {
   std::string cmd = shell_quote(build_program(program, g, options));
   for (const std::string& a : options.driver_args) cmd += " " + shell_quote(a);
   std::fflush(stdout);

@@ -19,8 +19,9 @@ struct SimOptions {
   bool verbose = false;
 };
 
-// Returns the program's exit code. Throws ModelError or std::runtime_error.
-int run_program(Program program, const std::string& model_path, const SimOptions& options);
+// Compiles (or takes from the cache) and runs the program around a generated
+// model. Returns the program's exit code. Throws std::runtime_error.
+int run_program(Program program, const Generated& generated, const SimOptions& options);
 
 // The compiled executable for a model (built if not cached).
 std::string build_program(Program program, const Generated& generated, const SimOptions& options);

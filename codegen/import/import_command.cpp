@@ -33,17 +33,7 @@ int usage_error(const std::string& message) {
 
 }  // namespace
 
-int run_import(const std::vector<std::string>& args) {
-  std::string source, out;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "-o" && i + 1 < args.size()) out = args[++i];
-    else if (args[i] == "-o") return usage_error("-o: missing value");
-    else if (!args[i].empty() && args[i][0] == '-') return usage_error("unknown option '" + args[i] + "'");
-    else if (source.empty()) source = args[i];
-    else return usage_error("unexpected argument '" + args[i] + "'");
-  }
-  if (source.empty()) return usage_error("missing the URDF or MJCF file");
-  if (out.empty()) return usage_error("missing -o MODEL.yaml");
+int run_import(const std::string& source, const std::string& out) {
   const std::string extension = std::filesystem::path(source).extension().string();
   if (extension != ".urdf" && extension != ".xml") {
     return usage_error("'" + source + "': expected a URDF (.urdf) or MJCF (.xml) file");

@@ -3,13 +3,13 @@
 #pragma once
 
 #include <string>
-#include <vector>
 
 namespace mbrt::codegen {
 
-// Runs the command on its arguments (those after "import"). Returns the exit
-// code: 0, or 2 for a bad command line or a missing parser library (printed
-// on stderr); throws std::runtime_error naming the file for a bad source.
-int run_import(const std::vector<std::string>& args);
+// Writes `source` as the model file `out`. Returns the exit code: 0, or 2 for
+// a source that is neither .urdf nor .xml, an unwritable `out` or a missing
+// parser library (printed on stderr); throws std::runtime_error naming the
+// file for a bad source.
+int run_import(const std::string& source, const std::string& out);
 
 }  // namespace mbrt::codegen

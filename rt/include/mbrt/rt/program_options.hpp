@@ -5,6 +5,7 @@
 // before they compile anything.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -54,13 +55,18 @@ struct StubOptions {
   Faults faults;
 };
 
+// A check that a value parses completely as a finite number for which
+// ok(x) holds; its message otherwise: "expected <what>, got '<text>'".
+CLI::Validator number_check(const std::string& what, std::function<bool(double)> ok);
+
 void add_hil_options(CLI::App& app, HilOptions& options);
 void add_stub_options(CLI::App& app, StubOptions& options);
 
 // What is wrong with options that each parsed (a combination, or a rate that
 // does not fit the model's step h), or "" when nothing is.
-std::string check_hil_options(const HilOptions& options, double step);
-std::string check_stub_options(const StubOptions& options);
+std::string check_link_options(const LinkOptions& link);
+std::string check_rate(double rate_hz, double step);
+std::string check_hil_options(const HilOptions& options, double step);  // both
 
 // Parses argv into app's options; on a mistake prints it with the usage and
 // exits with status 2 (with --help: the usage, status 0).
