@@ -29,8 +29,9 @@ constexpr const char* kUsage = R"(usage:
                       [--delay-us D] [--jitter-us J] [--seed N] [--crash-after S]
                       [--drop P] [--duplicate P] [--reorder P] [--garbage P] [--nan P] [--out-of-range P]
 
-gen writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and
-outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp).
+gen writes DIR/<name>.hpp and DIR/<name>.cpp, the C interface DIR/<name>_c.h and
+DIR/<name>_c.cpp (docs/c_interface.md) and, for models with inputs and
+outputs, DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp.
 --no-specialize generates the general step, without the specializations the
 scene would allow; --no-specialize=NAME,... turns off only those named
 (principal_axes, isotropic, single_stage, gravity_free, folded_weights,
