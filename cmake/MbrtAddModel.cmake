@@ -6,7 +6,9 @@
 # model file or the generator changes) and adds it as a static library
 # <target>. Include "<name>.hpp" (name from the model file, or NAME to build
 # several variants of one model into one program) and call
-# mbrt::models::<name>::step(). With LCM (models with inputs and outputs),
+# mbrt::models::<name>::step(); C programs include "<name>_c.h" and call
+# <name>_step() (the C interface is compiled into the library too;
+# docs/c_interface.md). With LCM (models with inputs and outputs),
 # lcm-gen also runs on the model's message types and "<name>_lcm.hpp" packs
 # Outputs and Inputs into them ("<name>_can.hpp" packs them into CAN frames as
 # "<name>.dbc" describes); the target then links liblcm. GEN_OPTIONS
@@ -52,7 +54,7 @@ function(mbrt_add_model target)
   list(APPEND options ${ARG_GEN_OPTIONS})
 
   set(dir "${CMAKE_CURRENT_BINARY_DIR}/mbrt_models/${target}")
-  set(outputs "${dir}/${name}.hpp" "${dir}/${name}.cpp")
+  set(outputs "${dir}/${name}.hpp" "${dir}/${name}.cpp" "${dir}/${name}_c.h" "${dir}/${name}_c.cpp")
   set(lcm_gen "")
   if(ARG_LCM)
     find_program(LCM_GEN lcm-gen REQUIRED)

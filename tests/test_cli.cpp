@@ -112,6 +112,8 @@ TEST_CASE("mbrt gen writes the model's header and source") {
   REQUIRE(r.exit_code == 0);
   CHECK(fs::exists(dir / "four_bar.hpp"));
   CHECK(fs::exists(dir / "four_bar.cpp"));
+  CHECK(fs::exists(dir / "four_bar_c.h"));  // the C interface, for every model
+  CHECK(fs::exists(dir / "four_bar_c.cpp"));
 }
 
 TEST_CASE("a bad model file is reported with file, line and key, and nothing is generated") {

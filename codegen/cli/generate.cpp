@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "emit_c.hpp"
 #include "emit_can.hpp"
 #include "emit_lcm.hpp"
 #include "initial_conditions.hpp"
@@ -82,8 +83,9 @@ Generated generate(const std::string& model_path, const GenerateOptions& options
   if (const std::string w = stable_step_warning(g.model, g.stable); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   if (const std::string w = tree_energy_warning(g.model); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   g.code = emit_cpp(g.model, g.analysis);
+  g.code.interface_files = emit_c(g.model, g.analysis);
   if (!g.model.inputs.empty() && !g.model.outputs.empty()) {
-    g.code.interface_files = emit_lcm(g.model);
+    for (GeneratedFile& f : emit_lcm(g.model)) g.code.interface_files.push_back(std::move(f));
     for (GeneratedFile& f : emit_can(g.model, options.can_fd)) g.code.interface_files.push_back(std::move(f));
   }
   return g;

@@ -27,8 +27,9 @@ namespace {
 using mbrt::rt::number_check;
 
 constexpr const char* kDescription = R"(mbrt: a multibody model's fixed-step, allocation-free step() as C++.
-  gen     writes DIR/<name>.hpp and DIR/<name>.cpp (and, for models with inputs and outputs,
-          DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp);
+  gen     writes DIR/<name>.hpp and DIR/<name>.cpp, the C interface DIR/<name>_c.h and
+          DIR/<name>_c.cpp (docs/c_interface.md) and, for models with inputs and outputs,
+          DIR/<name>.lcm, DIR/<name>_lcm.hpp, DIR/<name>.dbc and DIR/<name>_can.hpp;
           --report prints, as JSON, the specializations that applied, the step's floating-point
           operations and instructions, its code size and predicted time (docs/specializations.md)
   sim     generates, compiles (cached by content hash under $MBRT_CACHE_DIR or ~/.cache/mbrt) and

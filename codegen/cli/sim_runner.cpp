@@ -131,7 +131,7 @@ void run_or_throw(const std::string& cmd, const std::string& what, const fs::pat
 
 std::string build_program(Program program, const Generated& g, const SimOptions& options) {
   const ProgramPlan p = plan(program);
-  if (p.lcm && g.code.interface_files.empty()) {
+  if (p.lcm && (g.model.inputs.empty() || g.model.outputs.empty())) {
     throw ModelError({g.model.file, 0, 0}, "inputs",
                      "model '" + g.model.name + "' needs both inputs and outputs to run in a HIL loop");
   }

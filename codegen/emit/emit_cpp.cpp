@@ -50,34 +50,8 @@ std::string Emitter::header() const {
   if (has_outputs()) output_declarations(o);
   if (tree_scheme()) tree_types(o);
   o << "// Everything that changes from step to step; the caller owns it.\n"
-    << "struct State {\n"
-    << "  double t = 0.0;\n"
-    << "  std::array<mbrt::RigidState, kRigidBodies> rigid;     // by rigid::BODY\n"
-    << "  std::array<mbrt::ParticleState, kParticles> particle;  // by particle::BODY\n"
-    << (tree_scheme() ? std::string("  // The joint coordinates (rad or m from t = 0), their rates and accelerations")
-                            + (scheme_kind() == Scheme::midpoint_tree ? "\n  // (qdd at the last step's midpoint)"
-                               : scheme_kind() == Scheme::rk4_tree    ? "\n  // (qdd from the last step's fourth stage)"
-                                                                      : "")
-                            + ":\n"
-                        "  // what step() advances; rigid holds the bodies they put where.\n"
-                        "  Dofs q, qd, qdd;\n"
-                        "  // Body accelerations and constraint multipliers at the state, which\n"
-                        "  // step() does not need: set by initial_state() and set_multipliers().\n"
-                      : "  // Accelerations at t, reused by the next step's explicit stage.\n")
-    << "  std::array<mbrt::RigidAcceleration, kRigidBodies> rigid_acceleration;\n"
-    << "  std::array<mbrt::Vec3, kParticles> particle_acceleration;\n"
-    << (tree_scheme() ? "" : "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n")
-    << "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n"
-    << (has_inputs() ? "  Inputs inputs;  // applied by step(); initial_state() sets the safe values\n" : "");
-  if (scheme_kind() == Scheme::ali3p) {
-    o << "  // ali3p: lambda* + alpha phi of the last step, the next one's start\n"
-      << "  // (lambda adds the acceleration projection's part).\n"
-      << "  Eigen::Matrix<double, kConstraintRows, 1> ali3p_lambda_star;\n";
-  }
-  if (ali3p_weighted()) {
-    o << "  // M^-1 (B^T lambda - F) at t, the generalized-alpha weighting's old term.\n"
-      << "  std::array<mbrt::Vec6, kBodies> ali3p_force;\n";
-  }
+    << "struct State {\n";
+  for (const StateField& f : state_fields()) o << f.declaration;
   o << "};\n\n";
   workspace_struct(o);
   o << "// The model file's initial state with consistent accelerations.\n"
@@ -102,6 +76,54 @@ std::string Emitter::header() const {
     << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept;\n\n" : "")
     << "}  // namespace mbrt::models::" << m_.name << "\n";
   return o.str();
+}
+
+std::vector<StateField> Emitter::state_fields() const {
+  const int nr = a_.rigid_count, np = a_.particle_count, rows = a_.constraint_rows;
+  std::vector<StateField> f = {
+      {"  double t = 0.0;\n", "t", "double", "", "", 1},
+      {"  std::array<mbrt::RigidState, kRigidBodies> rigid;     // by rigid::BODY\n", "rigid", "mbrt_rigid_state",
+       "RIGID_BODIES", "", nr},
+      {"  std::array<mbrt::ParticleState, kParticles> particle;  // by particle::BODY\n", "particle",
+       "mbrt_particle_state", "PARTICLES", "", np},
+  };
+  std::string acceleration_comment = "  // Accelerations at t, reused by the next step's explicit stage.\n";
+  if (tree_scheme()) {
+    const std::string qdd = scheme_kind() == Scheme::midpoint_tree ? "\n  // (qdd at the last step's midpoint)"
+                            : scheme_kind() == Scheme::rk4_tree    ? "\n  // (qdd from the last step's fourth stage)"
+                                                                   : "";
+    f.push_back({"  // The joint coordinates (rad or m from t = 0), their rates and accelerations" + qdd +
+                     ":\n  // what step() advances; rigid holds the bodies they put where.\n  Dofs q, qd, qdd;\n",
+                 "q", "double", "DOFS", "", tree_dofs()});
+    f.push_back({"", "qd", "double", "DOFS", "", tree_dofs()});
+    f.push_back({"", "qdd", "double", "DOFS", "", tree_dofs()});
+    acceleration_comment =
+        "  // Body accelerations and constraint multipliers at the state, which\n"
+        "  // step() does not need: set by initial_state() and set_multipliers().\n";
+  }
+  f.push_back({acceleration_comment + "  std::array<mbrt::RigidAcceleration, kRigidBodies> rigid_acceleration;\n",
+               "rigid_acceleration", "mbrt_rigid_acceleration", "RIGID_BODIES", "", nr});
+  f.push_back({"  std::array<mbrt::Vec3, kParticles> particle_acceleration;\n", "particle_acceleration", "double",
+               "PARTICLES", "[3]", np});
+  f.push_back({std::string(tree_scheme() ? "" : "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n") +
+                   "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n",
+               "lambda", "double", "CONSTRAINT_ROWS", "", rows});
+  if (has_inputs()) {
+    f.push_back({"  Inputs inputs;  // applied by step(); initial_state() sets the safe values\n", "inputs", "double",
+                 "INPUTS", "", static_cast<int>(m_.inputs.size())});
+  }
+  if (scheme_kind() == Scheme::ali3p) {
+    f.push_back({"  // ali3p: lambda* + alpha phi of the last step, the next one's start\n"
+                 "  // (lambda adds the acceleration projection's part).\n"
+                 "  Eigen::Matrix<double, kConstraintRows, 1> ali3p_lambda_star;\n",
+                 "ali3p_lambda_star", "double", "CONSTRAINT_ROWS", "", rows});
+  }
+  if (ali3p_weighted()) {
+    f.push_back({"  // M^-1 (B^T lambda - F) at t, the generalized-alpha weighting's old term.\n"
+                 "  std::array<mbrt::Vec6, kBodies> ali3p_force;\n",
+                 "ali3p_force", "double", "BODIES", "[6]", static_cast<int>(m_.bodies.size())});
+  }
+  return f;
 }
 
 // The model's names as indices, so code reads s.rigid[rigid::crank] and

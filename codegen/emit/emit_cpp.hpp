@@ -20,7 +20,7 @@ struct GeneratedCode {
   std::string source;       // <name>.cpp
   std::string header_name;  // "<name>.hpp"
   std::string source_name;  // "<name>.cpp"
-  std::vector<GeneratedFile> interface_files;  // LCM types, DBC and packing (models with inputs and outputs)
+  std::vector<GeneratedFile> interface_files;  // the C interface; LCM types, DBC and packing (models with inputs and outputs)
 };
 
 GeneratedCode emit_cpp(const Model& model, const Analysis& analysis);

@@ -36,7 +36,7 @@ void Emitter::output_declarations(std::ostringstream& o) const {
   }
   o << "}  // namespace output\n"
     << "inline constexpr int kOutputSignals = " << m_.outputs.size() << ";\n"
-    << "inline constexpr int kOutputs = " << first << ";  // values\n"
+    << "inline constexpr int kOutputs = " << output_value_count() << ";  // values\n"
     << "using Outputs = std::array<double, kOutputs>;\n"
     << "inline constexpr std::array<mbrt::OutputInfo, kOutputSignals> kOutputInfo{{\n";
   first = 0;
@@ -46,6 +46,12 @@ void Emitter::output_declarations(std::ostringstream& o) const {
     first += type_row(out.type).values;
   }
   o << "}};\n\n";
+}
+
+int Emitter::output_value_count() const {
+  int n = 0;
+  for (const Output& out : m_.outputs) n += type_row(out.type).values;
+  return n;
 }
 
 std::string Emitter::input_target(const Input& in) const {

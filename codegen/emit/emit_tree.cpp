@@ -96,7 +96,7 @@ std::string Emitter::tree_step_name() const {
 bool Emitter::tree_external_loads() const { return !m_.forces.empty() || !m_.inputs.empty(); }
 
 void Emitter::tree_types(std::ostringstream& o) const {
-  o << "inline constexpr int kDofs = " << a_.tree_frames.frames.size() << ";  // joint coordinates, in kBodyInfo order\n"
+  o << "inline constexpr int kDofs = " << tree_dofs() << ";  // joint coordinates, in kBodyInfo order\n"
     << "using Dofs = std::array<double, kDofs>;\n"
     << "// cos and sin of half of each revolute joint's angle from its frame's x axis.\n"
     << "using HalfAngles = std::array<mbrt::SinCos, kDofs>;\n\n";

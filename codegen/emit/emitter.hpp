@@ -51,12 +51,26 @@ inline std::string block_type(int r, int c) {
   return "Eigen::Matrix<double, " + std::to_string(r) + ", " + std::to_string(c) + ">";
 }
 
+// A member of the generated State, in declaration order. The C++ header's
+// struct State and the C interface's <name>_state (emit_c.cpp) are written
+// from one list of them.
+struct StateField {
+  std::string declaration;  // its C++ lines, comments first ("" when declared with the one before)
+  std::string name;
+  std::string c_type;       // C element type: double, mbrt_rigid_state, ...
+  std::string c_length;     // its array length's constant after "<NAME>_" (RIGID_BODIES, ...); "" for a scalar
+  std::string c_inner;      // the element's own extent ("[3]" for a Vec3), or ""
+  int count;                // elements; 0 leaves it out of the C struct (C has no empty arrays)
+};
+
 // Writes the generated files for one model.
 class Emitter {
  public:
   Emitter(const Model& m, const Analysis& a) : m_(m), a_(a) {}
 
   GeneratedCode run();
+  // emit_c.cpp: <name>_c.h and <name>_c.cpp, the C interface over the C++ one.
+  std::vector<GeneratedFile> c_interface() const;
 
  private:
   // The emitter of the planar step: it owns an analysis with the planar constraint blocks.
@@ -156,6 +170,7 @@ class Emitter {
   std::string header() const;
   std::string source() const;
   void index_names(std::ostringstream& o) const;  // namespaces body, rigid, particle, constraint
+  std::vector<StateField> state_fields() const;
   void constants(std::ostringstream& o) const;
   void frame_constants(std::ostringstream& o) const;  // joints', inputs' and force elements' vectors, in axes()
   void workspace_types(std::ostringstream& o) const;   // the kernels' types (Kinematics, ConstraintSystem, ...)
@@ -199,6 +214,7 @@ class Emitter {
   bool has_outputs() const { return !m_.outputs.empty(); }
   void input_declarations(std::ostringstream& o) const;   // index constants, ranges, safe values
   void output_declarations(std::ostringstream& o) const;  // one flat array; each signal's first index and count
+  int output_value_count() const;                         // kOutputs: the values of all signals
   std::string input_target(const Input& in) const;
   std::string output_source(const Output& out) const;
   bool revolute_output(const Output& out) const;
@@ -225,6 +241,7 @@ class Emitter {
   std::string step_header() const;     // and its header there
   bool tree_external_loads() const;
   void tree_types(std::ostringstream& o) const;  // kDofs, Dofs, HalfAngles
+  int tree_dofs() const { return static_cast<int>(a_.tree_frames.frames.size()); }
   void tree_kernels(std::ostringstream& o) const;
 
   // emit_planar.cpp: namespace planar { ... step(s) } from a planar emitter.
