@@ -3,9 +3,11 @@
 // with CLI11; every value is checked before anything is generated or
 // compiled, and a mistake exits with status 2 naming the option.
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -13,6 +15,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
@@ -36,6 +40,9 @@ constexpr const char* kDescription = R"(mbrt: a multibody model's fixed-step, al
           runs the model; its last line on stdout is a JSON summary
   hil     runs the model in a real-time loop that publishes its outputs and takes commands over
           LCM or a CAN bus; stub runs a PD controller for it; both print a JSON report (docs/hil.md)
+  build   compiles (or takes from the cache) the sim, hil or stub program and prints its path
+  sweep   runs the model's sim program over a grid or random samples of its tunable parameters,
+          on local processes, Dask or Slurm, into one table (docs/sweeps.md)
   import  writes a URDF or MJCF file as a model file (docs/import.md)
 `mbrt COMMAND --help` lists a command's options.)";
 
@@ -92,6 +99,24 @@ std::vector<std::string> given_options(const CLI::App& app, const std::set<const
   return args;
 }
 
+// `mbrt sweep ...`: the Python tool python/mbrt/sweep with the remaining
+// arguments, told this executable in $MBRT.
+[[noreturn]] void exec_sweep(int argc, char** argv) {
+  const std::string package = mbrt::codegen::python_package_dir();
+  const char* old_path = std::getenv("PYTHONPATH");
+  setenv("PYTHONPATH", (package + (old_path && *old_path ? ":" + std::string(old_path) : "")).c_str(), 1);
+  setenv("MBRT", std::filesystem::read_symlink("/proc/self/exe").c_str(), 1);
+  // Debian's interpreter, which has python3-numpy and python3-distributed, before any other on PATH.
+  const char* python = std::getenv("MBRT_PYTHON");
+  if (!python || !*python) python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  std::vector<char*> args = {const_cast<char*>(python), const_cast<char*>("-m"), const_cast<char*>("mbrt.sweep")};
+  args.insert(args.end(), argv + 2, argv + argc);
+  args.push_back(nullptr);
+  execvp(python, args.data());
+  std::fprintf(stderr, "error: cannot run %s for mbrt sweep: %s\n", python, std::strerror(errno));
+  std::exit(1);
+}
+
 [[noreturn]] void usage_error(const CLI::App& app, const std::string& why) {
   std::fprintf(stderr, "error: %s\n\n%s", why.c_str(), app.help().c_str());
   std::exit(2);
@@ -99,6 +124,7 @@ std::vector<std::string> given_options(const CLI::App& app, const std::set<const
 
 int run(int argc, char** argv) {
   using mbrt::codegen::Program;
+  if (argc > 1 && argv[1] == std::string("sweep")) exec_sweep(argc, argv);
   CLI::App app(kDescription, "mbrt");
   app.require_subcommand(1);
 
@@ -115,12 +141,17 @@ int run(int argc, char** argv) {
   CLI::App* sim_cmd = app.add_subcommand("sim", "generate, compile and run a model");
   CLI::App* hil_cmd = app.add_subcommand("hil", "run a model in a real-time loop over LCM or CAN");
   CLI::App* stub_cmd = app.add_subcommand("stub", "run a PD controller with fault injection for a model in hil");
-  for (CLI::App* cmd : {gen_cmd, sim_cmd, hil_cmd, stub_cmd}) {
+  CLI::App* build_cmd = app.add_subcommand("build", "compile a model's program (cached like sim) and print its path");
+  app.add_subcommand("sweep", "parameter sweeps and Monte Carlo runs (mbrt sweep --help)");
+  for (CLI::App* cmd : {gen_cmd, sim_cmd, hil_cmd, stub_cmd, build_cmd}) {
     cmd->add_option("MODEL", model_path, "the model file (.yaml)")->required();
     add_generate_options(*cmd, gen, no_specialize);
   }
   gen_cmd->add_option("-o", out_dir, "the directory to write into")->required();
   gen_cmd->add_flag("--report", report, "print what the step costs and what was left out, as JSON");
+  std::string built = "sim";
+  build_cmd->add_option("--program", built, "the program: sim (default), hil or stub")
+      ->check(CLI::IsMember({"sim", "hil", "stub"}));
 
   // sim's run options, checked here; the program gets the text as given, at full precision.
   const auto forward = [&sim](const std::string& flag) {
@@ -144,7 +175,7 @@ int run(int argc, char** argv) {
                                flag == std::string("--velocities") ? "add the velocities to the CSV"
                                                                    : "add the joints' reactions to the CSV");
   }
-  for (CLI::App* cmd : {sim_cmd, hil_cmd, stub_cmd}) cmd->add_flag("--verbose", sim.verbose, "show the compiler's command");
+  for (CLI::App* cmd : {sim_cmd, hil_cmd, stub_cmd, build_cmd}) cmd->add_flag("--verbose", sim.verbose, "show the compiler's command");
 
   const auto add_program_options = [&program_options](CLI::App& cmd, const auto& add) {
     const size_t before = cmd.get_options().size();
@@ -197,6 +228,11 @@ int run(int argc, char** argv) {
   if (gen_cmd->parsed()) {
     mbrt::codegen::write_generated(g.code, out_dir);
     if (report) std::puts(mbrt::codegen::report_json(mbrt::codegen::report_step(g, sim)).c_str());
+    return 0;
+  }
+  if (build_cmd->parsed()) {
+    const Program p = built == "sim" ? Program::sim : built == "hil" ? Program::hil : Program::pd_controller;
+    std::puts(mbrt::codegen::build_program(p, g, sim).c_str());
     return 0;
   }
   if (hil_cmd->parsed()) {

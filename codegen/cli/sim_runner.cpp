@@ -53,6 +53,7 @@ struct Sources {
   fs::path sim_driver;
   fs::path rt;        // the rt/ library sources and hil_driver.cpp
   fs::path stub;      // hil_stub/pd_controller.cpp
+  fs::path python;    // holds the Python package mbrt (python/mbrt)
 };
 
 Sources sources() {
@@ -60,11 +61,12 @@ Sources sources() {
   const fs::path prefix = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path();
   const fs::path share = prefix / "share" / "mbrt";
   if (!ec && fs::exists(share / "sim_driver.cpp") && fs::exists(prefix / "include" / "mbrt")) {
-    return {{prefix / "include"}, share / "sim_driver.cpp", share / "rt", share / "hil_stub" / "pd_controller.cpp"};
+    return {{prefix / "include"}, share / "sim_driver.cpp", share / "rt", share / "hil_stub" / "pd_controller.cpp",
+            share / "python"};
   }
   const fs::path root = toolchain::kSourceRoot;
   return {{root / "include", root / "rt" / "include"}, root / "codegen" / "sim" / "sim_driver.cpp", root / "rt",
-          root / "hil_stub" / "pd_controller.cpp"};
+          root / "hil_stub" / "pd_controller.cpp", root / "python"};
 }
 
 std::vector<std::string> split(const std::string& list) {
@@ -166,6 +168,8 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
   if (ec) fs::remove_all(tmp);  // another run finished first; use its result
   return exe.string();
 }
+
+std::string python_package_dir() { return sources().python.string(); }
 
 int run_program(Program program, const Generated& g, const SimOptions& options) {
   std::string cmd = shell_quote(build_program(program, g, options));

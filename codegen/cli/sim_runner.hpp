@@ -26,4 +26,8 @@ int run_program(Program program, const Generated& generated, const SimOptions& o
 // The compiled executable for a model (built if not cached).
 std::string build_program(Program program, const Generated& generated, const SimOptions& options);
 
+// The directory holding the Python package mbrt (mbrt sweep's tool):
+// <prefix>/share/mbrt/python when installed, else the source tree's python/.
+std::string python_package_dir();
+
 }  // namespace mbrt::codegen
