@@ -111,18 +111,19 @@ if first == "local":
     sweep("monte_carlo_seed8", *MONTE_CARLO[:-1], "8", *COMMON)
     check(float(table("monte_carlo_seed8")[0]["bob.mass"]) not in masses, "another seed, other samples")
 
-    # Failures are data: a diverging sample and one the program refuses are rows, the sweep goes on.
-    r = sweep("failures", "--grid", "gravity.y=-9.81,-1e300,bob.mass=1,-1", *COMMON)
-    rows = {(x["gravity.y"], x["bob.mass"]): x for x in table("failures")} if r.returncode == 0 else {}
+    # Failures are data: a diverging sample and one the program refuses (a start off the bar) are rows.
+    x0 = repr(math.sin(THETA0))
+    r = sweep("failures", "--grid", f"gravity.y=-9.81,-1e300,bob.position.x={x0},0.5", *COMMON)
+    rows = {(x["gravity.y"], x["bob.position.x"]): x for x in table("failures")} if r.returncode == 0 else {}
     check(r.returncode == 0 and len(rows) == 4, f"a sweep with failing samples finishes ({r.returncode}: {r.stderr[-300:]})")
     if rows:
-        check(rows[("-9.81", "1.0")]["status"] == "ok", "the good sample is ok")
-        check(rows[("-1e+300", "1.0")]["status"] == "non_finite", f"the diverging sample is non_finite "
-              f"({rows[('-1e+300', '1.0')]['status']}: {rows[('-1e+300', '1.0')]['message']})")
-        refused = rows[("-9.81", "-1.0")]
-        check(refused["status"] == "refused" and "mass" in refused["message"],
-              f"the negative mass is refused with a message naming it ({refused['status']}: {refused['message']})")
-        check(rows[("-1e+300", "1.0")]["bob.x"] == "", "no outputs for a sample that did not reach t_end")
+        check(rows[("-9.81", x0)]["status"] == "ok", "the good sample is ok")
+        diverged = rows[("-1e+300", x0)]
+        check(diverged["status"] == "non_finite" and diverged["bob.x"] == "",
+              f"the diverging sample is non_finite, without outputs ({diverged['status']}: {diverged['message']})")
+        refused = rows[("-9.81", "0.5")]
+        check(refused["status"] == "refused" and "violates the joints" in refused["message"],
+              f"the start off the bar is refused with the program's message ({refused['status']}: {refused['message']})")
 
     # Interrupted: the driver killed while samples run, then the same command again.
     many = ["--samples", "40", "--distribution", "gravity.y=uniform(-25,-1),bob.mass=uniform(0.5,2)", "--seed", "3"]

@@ -1,12 +1,14 @@
 """`mbrt sweep`: runs one compiled model over many parameter sets and
 collects every run into one table (docs/sweeps.md).
 
-    mbrt sweep MODEL.yaml (--grid SPEC | --samples N --distribution SPEC [--seed S]) --out DIR
+    mbrt sweep MODEL.yaml (--grid SPEC | --samples N --distribution SPEC) [--seed S] --out DIR
                [--executor local|dask|slurm] [--workers N] [--scheduler ADDRESS]
-               [generation options] [--t-end T] [--outputs COLS]
+               [generation options] ([--t-end T] [--outputs COLS] | --hil [--duration S] [--hil-args A] [--stub-args A])
 
 The program is compiled once (`mbrt build`); each sample runs it with its
-parameters as `--set KEY=VALUE`. Exit 0 when every sample finished (whatever
+parameters as `--set KEY=VALUE`. With --hil, each sample is a closed loop of
+the model's `hil` and `stub` programs in a private network namespace, its
+parameters their options (stub.drop=0.1: the stub's --drop 0.1). Exit 0 when every sample finished (whatever
 its status), 1 when some could not be run (a rerun resumes them) or the model
 is invalid, 2 for a bad command line.
 """
@@ -17,6 +19,7 @@ import hashlib
 import json
 import pathlib
 import subprocess
+import shlex
 import sys
 import tempfile
 
@@ -24,6 +27,7 @@ from .. import _mbrt_executable
 from . import executors, slurm, spec
 from .journal import JournalWriter, read_records
 from .out_dir import OutDir, OutDirError
+from .hil_sample import run_hil_sample
 from .progress import Progress
 from .sim_sample import csv_options, run_sim_sample, set_options
 from .table import write_csv
@@ -68,7 +72,8 @@ def parser():
     what.add_argument("--distribution", metavar="SPEC",
                       help="KEY=uniform(LOW,HIGH), normal(MEAN,SD), lognormal(MU,SIGMA) or a number, comma separated")
     p.add_argument("--samples", type=positive_int, metavar="N", help="with --distribution: the number of samples")
-    p.add_argument("--seed", type=int, default=0, metavar="S", help="with --distribution: the seed (default 0)")
+    p.add_argument("--seed", type=int, default=0, metavar="S",
+                   help="the seed of --distribution's samples and of --hil's fault injection (default 0)")
     p.add_argument("--out", required=True, metavar="DIR", help="results.csv, the journal and sweep.json go here")
     p.add_argument("--executor", choices=sorted(EXECUTORS), default="local")
     p.add_argument("--workers", type=positive_int, metavar="N",
@@ -83,6 +88,12 @@ def parser():
     p.add_argument("--t-end", type=nonnegative_float, default=1.0, metavar="T", help="run to this time, s (default 1)")
     p.add_argument("--outputs", default="", metavar="COLS",
                    help="columns of mbrt sim's CSV (with --velocities and --reactions) at t_end, comma separated")
+    hil = p.add_argument_group("HIL scenario sweeps (keys hil.OPTION and stub.OPTION, docs/sweeps.md)")
+    hil.add_argument("--hil", action="store_true", help="each sample: mbrt hil and mbrt stub in a private network")
+    hil.add_argument("--duration", type=nonnegative_float, default=2.0, metavar="S",
+                     help="the controller's run time, s (default 2)")
+    hil.add_argument("--hil-args", default="", metavar="ARGS", help="options for every sample's hil loop")
+    hil.add_argument("--stub-args", default="", metavar="ARGS", help="options for every sample's controller")
     return p
 
 
@@ -98,9 +109,10 @@ def generation_options(args):
     return out
 
 
-def build(model, options):
-    """The compiled sim program's path (`mbrt build`)."""
-    r = subprocess.run([str(_mbrt_executable(None)), "build", model, *options], stdout=subprocess.PIPE,
+def build(model, options, program="sim"):
+    """The compiled program's path (`mbrt build`)."""
+    r = subprocess.run([str(_mbrt_executable(None)), "build", model, "--program", program, *options],
+                       stdout=subprocess.PIPE,
                        stderr=subprocess.PIPE, text=True)
     message = r.stderr.split("\n\n")[0].strip()
     if r.returncode == 2:
@@ -141,43 +153,72 @@ def preflight(program, params, outputs):
             raise UsageError(f"--outputs: no column '{c}' in the sim program's CSV; it has {', '.join(columns)}")
 
 
-def sweep_spec(args, program, gen, parameter_sets, outputs):
-    """What a resumed sweep must share with the one in the out directory."""
-    model = pathlib.Path(args.model).resolve()
-    return {"model": str(model), "model_sha256": hashlib.sha256(model.read_bytes()).hexdigest(),
-            "program": pathlib.Path(program).parent.name, "generation": gen, "t_end": args.t_end,
-            "parameter_sets": len(parameter_sets),
-            "parameter_sets_sha256": hashlib.sha256(json.dumps(parameter_sets).encode()).hexdigest(),
-            "outputs": outputs, "spec": args.grid or f"{args.distribution} samples {args.samples} seed {args.seed}"}
+class Sweep:
+    """What a sweep runs: task (a picklable sample -> record), the output columns, check(params) run on
+    the first sample to run, and spec: what a resumed sweep must share."""
+
+    def __init__(self, task, outputs, check, spec):
+        self.task, self.outputs, self.check, self.spec = task, outputs, check, spec
+
+
+def sim_sweep(args, gen, parameter_sets):
+    outputs = [c.strip() for c in args.outputs.split(",") if c.strip()]
+    program = build(args.model, gen)
+    return Sweep(functools.partial(run_sim_sample, program, ["--t-end", repr(args.t_end)], outputs), outputs,
+                 lambda params: preflight(program, params, outputs),
+                 {"program": pathlib.Path(program).parent.name, "t_end": args.t_end, "outputs": outputs})
+
+
+def hil_sweep(args, gen, parameter_sets):
+    if args.outputs or args.t_end != 1.0:
+        raise UsageError("--t-end and --outputs are sim options; a --hil sweep runs for --duration")
+    other = [k for k in parameter_sets[0] if not k.startswith(("hil.", "stub."))]
+    if other:
+        raise UsageError(f"--hil: key '{other[0]}' is not hil.OPTION or stub.OPTION")
+    hil, stub = build(args.model, gen, "hil"), build(args.model, gen, "stub")
+    hil_args, stub_args = shlex.split(args.hil_args), shlex.split(args.stub_args)
+
+    def check(params):
+        r = run_hil_sample(hil, stub, 0.0, args.seed, hil_args, stub_args, (0, params))
+        if r["status"] == "refused":
+            raise UsageError(f"the HIL programs refused a sample's options: {r['message']}")
+        if r["status"] == "error":
+            raise RunError(f"cannot run a HIL pair: {r['message']}")
+
+    return Sweep(functools.partial(run_hil_sample, hil, stub, args.duration, args.seed, hil_args, stub_args), [],
+                 check, {"programs": [pathlib.Path(p).parent.name for p in (hil, stub)], "duration": args.duration,
+                         "seed": args.seed, "hil_args": hil_args, "stub_args": stub_args})
 
 
 def run(argv):
     args = parser().parse_args(argv)
     if args.scheduler and args.executor != "dask":
         raise UsageError("--scheduler goes with --executor dask")
-    if not pathlib.Path(args.model).is_file():
+    model = pathlib.Path(args.model)
+    if not model.is_file():
         raise UsageError(f"MODEL: no file '{args.model}'")
     parameter_sets = samples_of(args)
-    outputs = [c.strip() for c in args.outputs.split(",") if c.strip()]
     gen = generation_options(args)
-    program = build(args.model, gen)
-    out = OutDir(args.out, sweep_spec(args, program, gen, parameter_sets, outputs))
+    sweep = (hil_sweep if args.hil else sim_sweep)(args, gen, parameter_sets)
+    out = OutDir(args.out, {
+        "model": str(model.resolve()), "model_sha256": hashlib.sha256(model.read_bytes()).hexdigest(),
+        "generation": gen, "parameter_sets": len(parameter_sets),
+        "parameter_sets_sha256": hashlib.sha256(json.dumps(parameter_sets).encode()).hexdigest(), **sweep.spec})
     finished = read_records(out.journal)
     todo = [(i, p) for i, p in enumerate(parameter_sets) if i not in finished]
     failed = {}
     if todo:
-        preflight(program, todo[0][1], outputs)
+        sweep.check(todo[0][1])
         progress = Progress(len(parameter_sets), len(parameter_sets) - len(todo))
-        task = functools.partial(run_sim_sample, program, ["--t-end", repr(args.t_end)], outputs)
         with JournalWriter(out.journal / "driver.jsonl") as journal:
             def on_result(record):
                 journal.append(record)
                 progress.finished(record)
 
-            failed = EXECUTORS[args.executor](task, todo, on_result, workers=args.workers,
+            failed = EXECUTORS[args.executor](sweep.task, todo, on_result, workers=args.workers,
                                               scheduler=args.scheduler, out_dir=out.path)
     records = list(read_records(out.journal).values())
-    write_csv(records, outputs, out.table)
+    write_csv(records, sweep.outputs, out.table)
     statuses = collections.Counter(r["status"] for r in records)
     print(json.dumps({"samples": len(parameter_sets), "finished": len(records), "status": dict(sorted(statuses.items())),
                       "table": str(out.table)}))

@@ -9,11 +9,13 @@ a record. Every outcome is a record (failures are data):
 - `error`: it crashed, was killed, or printed no summary, with what happened.
 """
 import json
-import math
 import pathlib
 import signal
 import subprocess
 import tempfile
+
+from .record import error_message, make_record
+from .spec import format_value
 
 SUMMARY_FIELDS = ("steps", "energy_initial", "energy_final", "max_position_violation", "max_velocity_violation",
                   "max_acceleration_violation", "max_quat_norm_error", "ns_per_step")
@@ -23,22 +25,11 @@ _EVERY_FINAL_ONLY = str(10**15)
 
 def set_options(params):
     """`--set KEY=VALUE` per parameter, each value at full precision."""
-    return [a for key, value in params.items() for a in ("--set", f"{key}={value!r}")]
-
-
-def finite_or_none(x):
-    return x if isinstance(x, (int, float)) and math.isfinite(x) else None
+    return [a for key, value in params.items() for a in ("--set", f"{key}={format_value(value)}")]
 
 
 def record(index, params, status, message="", summary=None, outputs=None):
-    return {"sample": index, "params": params, "status": status, "message": message,
-            "summary": {k: finite_or_none((summary or {}).get(k)) for k in SUMMARY_FIELDS},
-            "outputs": {k: finite_or_none(v) for k, v in (outputs or {}).items()}}
-
-
-def last_message(text):
-    lines = [line.strip() for line in text.splitlines() if line.strip()]
-    return lines[-1] if lines else ""
+    return make_record(index, params, status, message, SUMMARY_FIELDS, summary, outputs)
 
 
 def read_final(csv_file, columns):
@@ -65,12 +56,12 @@ def run_sim_sample(program, run_args, outputs, sample):
         if r.returncode < 0:
             return record(index, params, "error", f"killed by {signal.Signals(-r.returncode).name}")
         if r.returncode in (1, 2):
-            return record(index, params, "refused", last_message(r.stderr))
+            return record(index, params, "refused", error_message(r.stderr))
         try:
             summary = json.loads(r.stdout.splitlines()[-1])
         except (IndexError, ValueError):
             return record(index, params, "error", f"exit code {r.returncode} without a JSON summary: "
-                                                  f"{last_message(r.stderr)}")
+                                                  f"{error_message(r.stderr)}")
         status = summary.get("status", "error")
         if r.returncode == 0 and status == "ok":
             return record(index, params, "ok", "", summary, read_final(csv_file, outputs) if outputs else None)

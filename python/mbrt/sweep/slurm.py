@@ -16,15 +16,14 @@ import sys
 import time
 import uuid
 
+from . import PACKAGE_ROOT
 from .journal import read_records
-
-_PACKAGE_ROOT = pathlib.Path(__file__).resolve().parents[2]  # holds mbrt/
 
 
 def _script(job_file, journal_dir):
     command = [sys.executable, "-m", "mbrt.sweep.slurm_task", str(job_file), str(journal_dir)]
     return ("#!/bin/sh\n"
-            f"export PYTHONPATH={shlex.quote(str(_PACKAGE_ROOT))}${{PYTHONPATH:+:$PYTHONPATH}}\n"
+            f"export PYTHONPATH={shlex.quote(str(PACKAGE_ROOT))}${{PYTHONPATH:+:$PYTHONPATH}}\n"
             f'exec {shlex.join(command)} "$SLURM_ARRAY_JOB_ID" "$SLURM_ARRAY_TASK_ID"\n')
 
 

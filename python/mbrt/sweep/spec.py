@@ -102,6 +102,11 @@ def distribution(spec):
     return draws
 
 
+def format_value(value):
+    """A parameter's value on a command line: at full precision, whole numbers without a point."""
+    return str(int(value)) if value.is_integer() and abs(value) < 2**53 else repr(value)
+
+
 def sample_seed(seed, index):
     """Sample index's own seed sequence under the sweep's seed."""
     return np.random.SeedSequence(seed, spawn_key=(index,))
