@@ -8,9 +8,9 @@ collects every run into one table (docs/sweeps.md).
 The program is compiled once (`mbrt build`); each sample runs it with its
 parameters as `--set KEY=VALUE`. With --hil, each sample is a closed loop of
 the model's `hil` and `stub` programs in a private network namespace, its
-parameters their options (stub.drop=0.1: the stub's --drop 0.1). Exit 0 when every sample finished (whatever
-its status), 1 when some could not be run (a rerun resumes them) or the model
-is invalid, 2 for a bad command line.
+parameters their options (stub.drop=0.1: the stub's --drop 0.1). Exit 0 when
+every sample finished (whatever its status), 1 when some could not be run (a
+rerun resumes them) or the model is invalid, 2 for a bad command line.
 """
 import argparse
 import collections
@@ -18,16 +18,16 @@ import functools
 import hashlib
 import json
 import pathlib
-import subprocess
 import shlex
+import subprocess
 import sys
 import tempfile
 
 from .. import _mbrt_executable
 from . import executors, slurm, spec
 from .journal import JournalWriter, read_records
-from .out_dir import OutDir, OutDirError
 from .hil_sample import run_hil_sample
+from .out_dir import OutDir, OutDirError
 from .progress import Progress
 from .sim_sample import csv_options, run_sim_sample, set_options
 from .table import write_csv
@@ -43,14 +43,16 @@ class RunError(Exception):
     """The model or its program failed before any sample ran (exit 1)."""
 
 
-def positive_int(text):
-    try:
-        n = int(text)
-    except ValueError:
-        n = 0
-    if n < 1:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 1, got '{text}'")
-    return n
+def integer(minimum):
+    def parse(text):
+        try:
+            n = int(text)
+        except ValueError:
+            n = minimum - 1
+        if n < minimum:
+            raise argparse.ArgumentTypeError(f"expected an integer >= {minimum}, got '{text}'")
+        return n
+    return parse
 
 
 def nonnegative_float(text):
@@ -71,12 +73,12 @@ def parser():
     what.add_argument("--grid", metavar="SPEC", help="KEY=START:STOP:COUNT or KEY=V1,V2,..., comma separated")
     what.add_argument("--distribution", metavar="SPEC",
                       help="KEY=uniform(LOW,HIGH), normal(MEAN,SD), lognormal(MU,SIGMA) or a number, comma separated")
-    p.add_argument("--samples", type=positive_int, metavar="N", help="with --distribution: the number of samples")
-    p.add_argument("--seed", type=int, default=0, metavar="S",
+    p.add_argument("--samples", type=integer(1), metavar="N", help="with --distribution: the number of samples")
+    p.add_argument("--seed", type=integer(0), default=0, metavar="S",
                    help="the seed of --distribution's samples and of --hil's fault injection (default 0)")
     p.add_argument("--out", required=True, metavar="DIR", help="results.csv, the journal and sweep.json go here")
     p.add_argument("--executor", choices=sorted(EXECUTORS), default="local")
-    p.add_argument("--workers", type=positive_int, metavar="N",
+    p.add_argument("--workers", type=integer(1), metavar="N",
                    help="local: processes at once (default: all cores); dask: LocalCluster workers; "
                         "slurm: array tasks (default: one per sample, at most 100)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="dask: the scheduler of a running cluster (tcp://HOST:PORT)")
@@ -85,7 +87,7 @@ def parser():
         gen.add_argument(option, metavar="VALUE")
     gen.add_argument("--project-initial", action="store_true")
     gen.add_argument("--no-specialize", nargs="?", const="", metavar="NAME,...")
-    p.add_argument("--t-end", type=nonnegative_float, default=1.0, metavar="T", help="run to this time, s (default 1)")
+    p.add_argument("--t-end", type=nonnegative_float, metavar="T", help="run to this time, s (default 1)")
     p.add_argument("--outputs", default="", metavar="COLS",
                    help="columns of mbrt sim's CSV (with --velocities and --reactions) at t_end, comma separated")
     hil = p.add_argument_group("HIL scenario sweeps (keys hil.OPTION and stub.OPTION, docs/sweeps.md)")
@@ -163,14 +165,15 @@ class Sweep:
 
 def sim_sweep(args, gen, parameter_sets):
     outputs = [c.strip() for c in args.outputs.split(",") if c.strip()]
+    t_end = 1.0 if args.t_end is None else args.t_end
     program = build(args.model, gen)
-    return Sweep(functools.partial(run_sim_sample, program, ["--t-end", repr(args.t_end)], outputs), outputs,
+    return Sweep(functools.partial(run_sim_sample, program, ["--t-end", repr(t_end)], outputs), outputs,
                  lambda params: preflight(program, params, outputs),
-                 {"program": pathlib.Path(program).parent.name, "t_end": args.t_end, "outputs": outputs})
+                 {"program": pathlib.Path(program).parent.name, "t_end": t_end, "outputs": outputs})
 
 
 def hil_sweep(args, gen, parameter_sets):
-    if args.outputs or args.t_end != 1.0:
+    if args.outputs or args.t_end is not None:
         raise UsageError("--t-end and --outputs are sim options; a --hil sweep runs for --duration")
     other = [k for k in parameter_sets[0] if not k.startswith(("hil.", "stub."))]
     if other:

@@ -39,6 +39,7 @@ def run_slurm(task, samples, on_result, out_dir, workers=None, **_):
     sbatch = subprocess.Popen(["sbatch", "--parsable", "--wait", f"--array=0-{count - 1}", "--job-name=mbrt-sweep",
                                f"--output={slurm_dir}/%A_%a.log", str(script)],
                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    job = sbatch.stdout.readline().strip().split(";")[0]  # printed at submission; --wait then waits
     pending = {s[0] for s in samples}
 
     def collect():
@@ -47,12 +48,17 @@ def run_slurm(task, samples, on_result, out_dir, workers=None, **_):
                 pending.discard(index)
                 on_result(record)
 
-    while sbatch.poll() is None:
-        time.sleep(1.0)
-        collect()
-    out, err = sbatch.communicate()
+    try:
+        while sbatch.poll() is None:
+            time.sleep(1.0)
+            collect()
+    except BaseException:  # interrupted: the job must not run on beside a rerun
+        if job:
+            subprocess.run(["scancel", job])
+        raise
+    err = sbatch.communicate()[1]
     collect()
     job_file.unlink()
-    why = f"no result from Slurm job {out.strip() or '(not submitted)'} (sbatch exit {sbatch.returncode}"
+    why = f"no result from Slurm job {job or '(not submitted)'} (sbatch exit {sbatch.returncode}"
     why += f": {err.strip()}" if err.strip() else f"; task logs in {slurm_dir}"
     return {index: why + ")" for index in pending}
