@@ -29,6 +29,7 @@ from .journal import JournalWriter, read_records
 from .hil_sample import run_hil_sample
 from .out_dir import OutDir, OutDirError
 from .progress import Progress
+from .record import error_message
 from .sim_sample import csv_options, run_sim_sample, set_options
 from .table import write_csv
 
@@ -138,15 +139,16 @@ def samples_of(args):
 
 
 def preflight(program, params, outputs):
-    """Runs the program to t = 0 with a sample's options: a refused option (exit 2: an unknown key) or an
-    unknown output column is the sweep's command line at fault, found before any sample runs. Other
+    """Runs the program to t = 0 with the first sample's options: a refused option (exit 2: an unknown key)
+    or an unknown output column is the sweep's command line at fault, found before any sample runs. Other
     outcomes are left to the sample's own row."""
     with tempfile.TemporaryDirectory(prefix="mbrt-sweep-") as tmp:
         csv_file = pathlib.Path(tmp) / "t0.csv"
         r = subprocess.run([program, "--t-end", "0", *set_options(params), *csv_options(csv_file)],
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         if r.returncode == 2:
-            raise UsageError(f"the sim program refused {' '.join(set_options(params))}: {r.stderr.strip()}")
+            raise UsageError(f"the sim program refused the first sample, {' '.join(set_options(params))}: "
+                             f"{error_message(r.stderr)}")
         if not csv_file.exists():
             return
         columns = csv_file.read_text().splitlines()[0].split(",")
@@ -156,23 +158,25 @@ def preflight(program, params, outputs):
 
 
 class Sweep:
-    """What a sweep runs: task (a picklable sample -> record), the output columns, check(params) run on
-    the first sample to run, and spec: what a resumed sweep must share."""
+    """What a sweep runs: task (a picklable sample -> record), the output columns, and spec: what a
+    resumed sweep must share."""
 
-    def __init__(self, task, outputs, check, spec):
-        self.task, self.outputs, self.check, self.spec = task, outputs, check, spec
+    def __init__(self, task, outputs, spec):
+        self.task, self.outputs, self.spec = task, outputs, spec
 
 
 def sim_sweep(args, gen, parameter_sets):
+    """Builds the sim program and checks it on the first sample."""
     outputs = [c.strip() for c in args.outputs.split(",") if c.strip()]
     t_end = 1.0 if args.t_end is None else args.t_end
     program = build(args.model, gen)
+    preflight(program, parameter_sets[0], outputs)
     return Sweep(functools.partial(run_sim_sample, program, ["--t-end", repr(t_end)], outputs), outputs,
-                 lambda params: preflight(program, params, outputs),
                  {"program": pathlib.Path(program).parent.name, "t_end": t_end, "outputs": outputs})
 
 
 def hil_sweep(args, gen, parameter_sets):
+    """Builds the hil and stub programs and checks them on the first sample, for no time."""
     if args.outputs or args.t_end is not None:
         raise UsageError("--t-end and --outputs are sim options; a --hil sweep runs for --duration")
     other = [k for k in parameter_sets[0] if not k.startswith(("hil.", "stub."))]
@@ -181,15 +185,13 @@ def hil_sweep(args, gen, parameter_sets):
     hil, stub = build(args.model, gen, "hil"), build(args.model, gen, "stub")
     hil_args, stub_args = shlex.split(args.hil_args), shlex.split(args.stub_args)
 
-    def check(params):
-        r = run_hil_sample(hil, stub, 0.0, args.seed, hil_args, stub_args, (0, params))
-        if r["status"] == "refused":
-            raise UsageError(f"the HIL programs refused a sample's options: {r['message']}")
-        if r["status"] == "error":
-            raise RunError(f"cannot run a HIL pair: {r['message']}")
-
+    r = run_hil_sample(hil, stub, 0.0, args.seed, hil_args, stub_args, (0, parameter_sets[0]))
+    if r["status"] == "refused":
+        raise UsageError(f"the HIL programs refused the first sample's options: {r['message']}")
+    if r["status"] == "error":
+        raise RunError(f"cannot run a HIL pair: {r['message']}")
     return Sweep(functools.partial(run_hil_sample, hil, stub, args.duration, args.seed, hil_args, stub_args), [],
-                 check, {"programs": [pathlib.Path(p).parent.name for p in (hil, stub)], "duration": args.duration,
+                 {"programs": [pathlib.Path(p).parent.name for p in (hil, stub)], "duration": args.duration,
                          "seed": args.seed, "hil_args": hil_args, "stub_args": stub_args})
 
 
@@ -211,7 +213,6 @@ def run(argv):
     todo = [(i, p) for i, p in enumerate(parameter_sets) if i not in finished]
     failed = {}
     if todo:
-        sweep.check(todo[0][1])
         progress = Progress(len(parameter_sets), len(parameter_sets) - len(todo))
         with JournalWriter(out.journal / "driver.jsonl") as journal:
             def on_result(record):
