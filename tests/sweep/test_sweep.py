@@ -186,6 +186,27 @@ if first == "local":
     r = subprocess.run([mbrt, "build", str(model), "--program", "nosuch"], capture_output=True, text=True)
     check(r.returncode == 2 and "--program" in r.stderr, "mbrt build --program nosuch: exit 2 naming --program")
 
+if first == "dask":
+    # A running cluster, given by its scheduler's address: a scheduler and a worker started here, the
+    # worker importing mbrt.sweep from PYTHONPATH as a real cluster's would.
+    scheduler_file = work / "scheduler.json"
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(__file__).resolve().parents[2] / "python"))
+    cluster = [subprocess.Popen([sys.executable, "-m", f"distributed.cli.dask_{p}", *args, "--no-dashboard",
+                                 "--scheduler-file", str(scheduler_file)], env=env, stderr=subprocess.DEVNULL)
+               for p, args in (("scheduler", ["--host", "127.0.0.1", "--port", "0"]), ("worker", ["--nthreads", "2"]))]
+    try:
+        while not scheduler_file.exists():
+            time.sleep(0.1)
+        time.sleep(0.5)  # the file is written whole once the scheduler listens
+        address = json.loads(scheduler_file.read_text())["address"]
+        r = sweep("monte_carlo_scheduler", *MONTE_CARLO, *COMMON, "--scheduler", address, executor="dask")
+        check(r.returncode == 0 and without_timing(table("monte_carlo_scheduler")) == without_timing(monte_carlo),
+              f"dask --scheduler {address}: the same table ({r.returncode}: {r.stderr[-300:]})")
+    finally:
+        for process in cluster:
+            process.terminate()
+            process.wait()
+
 for executor in executors[1:]:
     check(without_timing(run_checked(f"grid_{executor}", GRID, executor)) == without_timing(grid),
           f"{executor}: the grid's table equals {first}'s")
