@@ -150,6 +150,12 @@ TEST_CASE("tunable keys: names, and errors naming file, line and key") {
   CHECK(what_of(kPendulum + "tunable: [bob.mass]\n", mbrt::Scheme::ali3p).find("needs staggered-pcst") != std::string::npos);
   CHECK(what_of(kPendulum + "tunable: [gravity]\n", mbrt::Scheme::ali3p) == "(no error)");
   CHECK(what_of(kPendulum + "tunable: [bob.mass]\n", mbrt::Scheme::blajer) == "(no error)");
+  try {
+    load_model(MBRT_TEST_MODELS "/bad/unknown_tunable.yaml");
+    FAIL("unknown_tunable.yaml parsed");
+  } catch (const ModelError& e) {
+    CHECK(std::string(e.what()).find("unknown_tunable.yaml:9:5: tunable[0]: 'bob.colour'") != std::string::npos);
+  }
   // A file that names no scheme gets staggered-pcst, not a tree scheme that would fold them.
   CHECK(default_scheme(m) == mbrt::Scheme::staggered_pcst);
 }
