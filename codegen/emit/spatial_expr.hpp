@@ -171,7 +171,7 @@ inline Inertia to_origin(const V3& r, const Inertia& I) {
   const M3 rcr = congruence(rx, I.C, true);
   Inertia out = I;
   for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) out.A[i][j] = out.A[j][i] = I.A[i][j] + k[i][j] + k[j][i] + rcr[i][j];
+    for (int j = i; j < 3; ++j) out.A[i][j] = out.A[j][i] = I.A[i][j] + (i == j ? 2.0 * k[i][i] : k[i][j] + k[j][i]) + rcr[i][j];
   out.B = I.B + product(rx, I.C);
   return out;
 }
