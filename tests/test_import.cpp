@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include <Eigen/Core>
 #include <mujoco/mujoco.h>
 
@@ -49,11 +51,11 @@ Run mbrt(const std::string& args) {
   return r;
 }
 
-// A numeric field of sim's summary line (a flat JSON object).
-double field(const std::string& json, const std::string& key) {
-  const size_t at = json.find("\"" + key + "\": ");
-  REQUIRE(at != std::string::npos);
-  return std::stod(json.substr(at + key.size() + 4));
+// A numeric field of sim's summary, the JSON object on its last line (parsed strictly).
+double field(const std::string& out, const std::string& key) {
+  std::string text = out;
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  return nlohmann::json::parse(text.substr(text.rfind('\n') + 1)).at(key).get<double>();
 }
 
 // The CSV sim writes: column name -> values per row.

@@ -303,7 +303,7 @@ bodies:
 gravty: [0, 0, -9.81]
 )",
                     "gravty", 4,
-                    "unknown key 'gravty' (expected one of: name, gravity, bodies, joints, forces, drivers, inputs, outputs, solver)");
+                    "unknown key 'gravty' (expected one of: name, gravity, bodies, joints, forces, drivers, inputs, outputs, solver, tunable)");
 }
 
 TEST_CASE("an unknown key in a body is rejected with its line") {

@@ -22,6 +22,7 @@
 
 #include "generate.hpp"
 #include "import_command.hpp"
+#include "parameters.hpp"
 #include "mbrt/rt/program_options.hpp"
 #include "sim_runner.hpp"
 #include "step_report.hpp"
@@ -50,8 +51,15 @@ constexpr const char* kDescription = R"(mbrt: a multibody model's fixed-step, al
 void add_generate_options(CLI::App& app, mbrt::codegen::GenerateOptions& gen, std::vector<std::string>& no_specialize) {
   app.add_option_function<std::string>("--scheme", [&gen](const std::string& s) { gen.scheme = s; },
                                        "the scheme, overriding solver.scheme");
+  // Any number parses here; check_generate_options says what a step must be.
   app.add_option_function<double>("--h", [&gen](double h) { gen.step = h; }, "the step, s, overriding solver.step")
-      ->check(number_check("a number", [](double) { return true; }));
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            char* end = nullptr;
+            std::strtod(text.c_str(), &end);
+            return !text.empty() && *end == '\0' ? std::string() : "expected a number, got '" + text + "'";
+          },
+          "NUMBER"));
   app.add_option_function<double>("--euler-updates", [&gen](double k) { gen.euler_updates = static_cast<int>(k); },
                                   "Euler-parameter updates per step, overriding solver.euler_updates")
       ->check(number_check("an integer", [](double k) { return k == std::floor(k) && std::abs(k) < 1e9; }));
@@ -175,6 +183,18 @@ int run(int argc, char** argv) {
                                flag == std::string("--velocities") ? "add the velocities to the CSV"
                                                                    : "add the joints' reactions to the CSV");
   }
+  std::vector<std::string> set;  // --set KEY=VALUE: runtime parameters (docs/parameters.md), checked against the model
+  sim_cmd->add_option("--set", set, "set a tunable parameter before the run (repeatable)")
+      ->take_all()
+      ->check(CLI::Validator(
+          [](const std::string& pair) {
+            const size_t eq = pair.find('=');
+            if (eq == std::string::npos || eq == 0) return "expected KEY=VALUE, got '" + pair + "'";
+            return number_check("a finite number", [](double) { return true; })(pair.substr(eq + 1)).empty()
+                       ? std::string()
+                       : "expected KEY=VALUE with a finite number, got '" + pair + "'";
+          },
+          "KEY=VALUE"));
   for (CLI::App* cmd : {sim_cmd, hil_cmd, stub_cmd, build_cmd}) cmd->add_flag("--verbose", sim.verbose, "show the compiler's command");
 
   const auto add_program_options = [&program_options](CLI::App& cmd, const auto& add) {
@@ -237,6 +257,18 @@ int run(int argc, char** argv) {
   }
   if (hil_cmd->parsed()) {
     if (const std::string why = mbrt::rt::check_rate(hil.link.rate_hz, g.model.solver.step); !why.empty()) usage_error(cmd, why);
+  }
+  const std::vector<std::string> tunable = mbrt::codegen::tunable_names(g.model);
+  for (const std::string& pair : set) {
+    const std::string key = pair.substr(0, pair.find('='));
+    if (std::find(tunable.begin(), tunable.end(), key) != tunable.end()) {
+      sim.driver_args.insert(sim.driver_args.end(), {"--set", pair});
+      continue;
+    }
+    std::string names;
+    for (const std::string& n : tunable) names += (names.empty() ? "" : ", ") + n;
+    usage_error(cmd, "--set: '" + key + "' is not a tunable parameter of " + g.model.name +
+                         (names.empty() ? " (it marks none: docs/parameters.md)" : "; the tunable ones are " + names));
   }
   const std::vector<std::string> program_args = given_options(cmd, program_options);
   sim.driver_args.insert(sim.driver_args.end(), program_args.begin(), program_args.end());

@@ -148,6 +148,7 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
   std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags(p) + " -I" + shell_quote(tmp.string());
   for (const fs::path& inc : sources().includes) cmd += " -I" + shell_quote(inc.string());
   cmd += " -I" + shell_quote(toolchain::kEigenInclude) + " -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name;
+  if (!g.model.tunable.empty()) cmd += " -DMBRT_MODEL_PARAMETERS";  // --set KEY=VALUE (docs/parameters.md)
   if (p.lcm) {
     run_or_throw(std::string(toolchain::kLcmGen) + " -x --cpp-hpath " + shell_quote(tmp.string()) + " " +
                      shell_quote((tmp / (g.model.name + ".lcm")).string()),

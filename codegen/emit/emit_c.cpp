@@ -54,6 +54,7 @@ std::vector<GeneratedFile> Emitter::c_interface() const {
   if (tree_scheme()) h << "#define " << N << "_DOFS " << tree_dofs() << " /* joint coordinates, in body order */\n";
   if (has_inputs()) h << "#define " << N << "_INPUTS " << m_.inputs.size() << "\n";
   if (has_outputs()) h << "#define " << N << "_OUTPUTS " << output_value_count() << " /* values */\n";
+  if (a_.tunable) h << "#define " << N << "_PARAMETERS " << params_.size() << " /* runtime parameters, docs/parameters.md */\n";
 
   h << "\n/* Indices by name: BODY_ into the body names, RIGID_ and PARTICLE_ into the\n"
     << " * state's rigid and particle arrays, CONSTRAINT_ into the constraint names and\n"
@@ -130,7 +131,12 @@ std::vector<GeneratedFile> Emitter::c_interface() const {
                static_cast<int>(m_.inputs.size()));
   }
   c << "\nnamespace {\n\nnamespace model = mbrt::models::" << n << ";\n"
-    << "using mbrt::c_interface::from_c;\nusing mbrt::c_interface::to_c;\n\n"
+    << "using mbrt::c_interface::from_c;\nusing mbrt::c_interface::to_c;\n\n";
+  if (a_.tunable) {
+    c << "void to_c(const model::Parameters& p, double (&c)[" << N << "_PARAMETERS]) noexcept { to_c(p.value, c); }\n"
+      << "void from_c(const double (&c)[" << N << "_PARAMETERS], model::Parameters& p) noexcept { from_c(c, p.value); }\n\n";
+  }
+  c
     << "// What " << work << " holds: the C++ workspace and the state it steps.\n"
     << "struct Work {\n  model::State s;\n  model::Workspace w;\n};\n\n"
     << "Work& work_of(" << work << "* w) noexcept { return *std::launder(reinterpret_cast<Work*>(w)); }\n\n"

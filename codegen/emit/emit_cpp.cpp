@@ -49,13 +49,19 @@ std::string Emitter::header() const {
   if (has_inputs()) input_declarations(o);
   if (has_outputs()) output_declarations(o);
   if (tree_scheme()) tree_types(o);
+  if (a_.tunable) parameter_declarations(o);
   o << "// Everything that changes from step to step; the caller owns it.\n"
     << "struct State {\n";
   for (const StateField& f : state_fields()) o << f.declaration;
   o << "};\n\n";
   workspace_struct(o);
   o << "// The model file's initial state with consistent accelerations.\n"
-    << "State initial_state() noexcept;\n\n"
+    << "State initial_state() noexcept;\n"
+    << (a_.tunable ? "// The same with the parameters p (State::params = p). Where they move a body\n"
+                     "// off its joints, constraint_violation() of the result says by how much.\n"
+                     "State initial_state(const Parameters& p) noexcept;\n"
+                   : "")
+    << "\n"
     << "// Advances s by kStep in the caller's workspace. Allocates nothing, throws\n"
     << "// nothing, fixed work. On a non-finite result or a lost factorization s\n"
     << "// keeps its old value.\n"
@@ -123,6 +129,10 @@ std::vector<StateField> Emitter::state_fields() const {
                  "  std::array<mbrt::Vec6, kBodies> ali3p_force;\n",
                  "ali3p_force", "double", "BODIES", "[6]", static_cast<int>(m_.bodies.size())});
   }
+  if (a_.tunable) {
+    f.push_back({"  Parameters params = kDefaultParameters;  // read by step(), energy(), ...; the caller may set them\n",
+                 "params", "double", "PARAMETERS", "", static_cast<int>(params_.size())});
+  }
   return f;
 }
 
@@ -165,24 +175,13 @@ void Emitter::constants(std::ostringstream& o) const {
     case Scheme::rk4_tree:
       break;  // in struct Model; ali3p's are per row
   }
-  if (a_.gravity) o << "const mbrt::Vec3 kGravity = " << vec3(m_.gravity.value_or(Eigen::Vector3d::Zero())) << ";\n";
+  if (a_.gravity) gravity_constant(o);
   o << "const mbrt::BodyPose kGroundPose = mbrt::ground_pose();\n"
     << "const mbrt::BodyVelocity kGroundVelocity = mbrt::ground_velocity();\n\n"
     << "// Mass properties (constant; M is block diagonal).\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const Body& b = m_.bodies[i];
-    const BodyPlan& p = a_.bodies[i];
-    if (!p.rigid) {
-      o << "constexpr mbrt::PointMass " << mass_of(static_cast<int>(i)) << "{" << num(b.mass) << "};\n";
-    } else if (p.principal_axes) {
-      o << "const mbrt::PrincipalInertia " << mass_of(static_cast<int>(i)) << "{" << num(b.mass) << ", "
-        << vec3(b.inertia.diagonal()) << "};\n";
-    } else {
-      const PrincipalFrame f = principal_frame(b.inertia);
-      o << "const mbrt::FullInertia " << mass_of(static_cast<int>(i)) << "{" << num(b.mass) << ", "
-        << mat3(b.inertia) << ", " << mat3(b.inertia.inverse()) << ",\n    " << vec3(f.moments) << ", "
-        << vec4(f.axes) << "};\n";
-    }
+    mass_constant(o, static_cast<int>(i));
     if (folded_weights()) {
       o << "const mbrt::Vec3 " << weight_of(static_cast<int>(i)) << " = " << vec3(b.mass * *m_.gravity) << ";\n";
     }
@@ -228,10 +227,7 @@ void Emitter::frame_constants(std::ostringstream& o) const {
     const std::string n = "force_" + std::to_string(e);
     switch (f.type) {
       case ForceType::spring_damper:
-        o << "const mbrt::SpringDamper " << n << "{" << vec3(axes(p.spring.s1)) << ", " << vec3(axes(p.spring.s2)) << ", "
-          << num(p.spring.stiffness) << ", " << num(p.spring.damping) << ", " << num(p.spring.rest_length)
-          << "};  // spring_damper " << m_.body_name(f.body1) << " - " << m_.body_name(f.body2) << "\n";
-        break;
+      case ForceType::joint_spring: spring_constant(o, f, p, n); break;
       case ForceType::torque:
         o << "const mbrt::AxialTorque " << n << "{" << vec3(axes(p.torque.axis1)) << ", " << num(p.torque.value)
           << "};  // torque on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1) << "\n";
@@ -240,10 +236,6 @@ void Emitter::frame_constants(std::ostringstream& o) const {
         o << "const mbrt::Vec3 " << n << "_point = " << vec3(axes(p.point)) << ";  // force on "
           << m_.body_name(f.body) << "\n"
           << "const mbrt::Vec3 " << n << "_vector = " << vec3(axes(f.vector)) << ";\n";
-        break;
-      case ForceType::joint_spring:
-        o << "const mbrt::JointSpring " << n << "{" << num(p.joint_spring.stiffness) << ", " << num(p.joint_spring.damping)
-          << ", " << num(p.joint_spring.rest) << "};  // joint_spring " << jname(f.joint) << ": stiffness, damping, rest\n";
         break;
     }
   }
@@ -451,7 +443,7 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     if (tree) continue;
     if (folded_weights()) o << "  l.w" << at(static_cast<int>(i)) << ".f += " << weight_of(static_cast<int>(i)) << ";\n";
-    else if (a_.gravity) o << "  l.w" << at(static_cast<int>(i)) << ".f += " << mass_of(static_cast<int>(i)) << ".m * kGravity;\n";
+    else if (a_.gravity) o << "  l.w" << at(static_cast<int>(i)) << ".f += " << mass_of(static_cast<int>(i)) << ".m * " << gravity() << ";\n";
     if (gyroscopic(static_cast<int>(i)) && gyroscopic_loads()) {
       o << "  l.w" << at(static_cast<int>(i)) << ".tau += mbrt::gyroscopic_torque(" << mass_of(static_cast<int>(i)) << ", k.vel"
         << at(static_cast<int>(i)) << ".w);\n";
@@ -459,7 +451,7 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
   }
   for (size_t e = 0; e < a_.forces.size(); ++e) {
     const Force& f = m_.forces[static_cast<size_t>(a_.forces[e].model_index)];
-    const std::string n = "force_" + std::to_string(e);
+    const std::string n = force_name(static_cast<int>(e));
     if (planar_) {
       planar_force_load(o, f, n);
       continue;
@@ -613,7 +605,7 @@ void Emitter::factorization(std::ostringstream& o) const {
   }
   o << "// (c.*.rows) => (c.*.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.\n"
     << "// " << directions.text() << ".\n"
-    << "static void constraint_directions(ConstraintSystem& c) noexcept {\n"
+    << "static void constraint_directions(" << mass_parameter() << "ConstraintSystem& c) noexcept {\n"
     << body.str() << "}\n\n";
 
   const auto& order = a_.pattern.order;
@@ -658,8 +650,8 @@ void Emitter::factorization(std::ostringstream& o) const {
   o << "// (c.*.rows) => (c.*.mbt_*, c.*.L*): M^-1 B^T, then S block by block in\n"
     << "// elimination order (" << a_.pattern.fill_blocks << " fill blocks); false if a pivot is not positive.\n"
     << "// " << factor.text() << ".\n"
-    << "static bool factorize(ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
-    << ") noexcept {\n  bool positive = true;\n  constraint_directions(c);\n";
+    << "static bool factorize(" << mass_parameter() << "ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
+    << ") noexcept {\n  bool positive = true;\n  constraint_directions(" << mass_argument() << "c);\n";
   if (shifted && blocks() == 0) o << "  (void)shift;\n";
   o << body.str() << "  return positive;\n}\n\n";
 
@@ -726,7 +718,7 @@ std::string Emitter::s_block(int i, int j, const std::string& directions) const 
 
 void Emitter::mass_products(std::ostringstream& o) const {
   o << "// (l) => (M^-1 F) per body.\n"
-    << "static BodyVectors free_accelerations(const Loads& l) noexcept {\n  BodyVectors a;\n";
+    << "static BodyVectors free_accelerations(" << mass_parameter() << "const Loads& l) noexcept {\n  BodyVectors a;\n";
   if (std::none_of(a_.bodies.begin(), a_.bodies.end(), [](const BodyPlan& p) { return p.loaded; })) o << "  (void)l;\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     if (!a_.bodies[i].loaded) {
@@ -739,15 +731,24 @@ void Emitter::mass_products(std::ostringstream& o) const {
 }
 
 void Emitter::initial_state_function(std::ostringstream& o) const {
-  o << "static State initial_state() noexcept {\n  State s;\n";
+  if (a_.tunable) {
+    o << "// The initial state of the model file, or of the parameters p where its\n"
+      << "// keys are tunable: check constraint_violation() when they move a body.\n"
+      << "static State initial_state(const Parameters& p) noexcept {\n  State s;\n  s.params = p;\n";
+  } else {
+    o << "static State initial_state() noexcept {\n  State s;\n";
+  }
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const Body& b = m_.bodies[i];
-    const std::string st = state_of(static_cast<int>(i));
+    const int n = static_cast<int>(i);
+    const std::string st = state_of(n);
+    const std::string r = vec3_of(ParameterTarget::position, n, b.position, "p");
+    const std::string v = vec3_of(ParameterTarget::velocity, n, b.velocity, "p");
     if (a_.bodies[i].rigid) {
-      o << "  " << st << " = {" << vec3(b.position) << ", " << vec4(b.orientation) << ",\n      " << vec3(b.velocity)
-        << ", " << vec3(b.angular_velocity) << "};\n";
+      o << "  " << st << " = {" << r << ", " << vec4(b.orientation) << ",\n      " << v
+        << ", " << vec3_of(ParameterTarget::angular_velocity, n, b.angular_velocity, "p") << "};\n";
     } else {
-      o << "  " << st << " = {" << vec3(b.position) << ", " << vec3(b.velocity) << "};\n";
+      o << "  " << st << " = {" << r << ", " << v << "};\n";
     }
   }
   if (has_inputs()) {
@@ -771,7 +772,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
   if (nps) {
     o << "  TreeSystem t;\n  factorize_tree(k, c, t);\n" << (nps_cuts() ? "  factorize_cut(c, t);\n" : "");
   } else {
-    o << (ali3p ? "  factorize(c, Rows::Constant(kRegularization));\n" : "  factorize(c);\n");
+    o << "  factorize(" << mass_argument() << (ali3p ? "c, Rows::Constant(kRegularization));\n" : "c);\n");
   }
   o << "  Loads l;\n  applied_loads(k, s, l);\n  constraint_forces(" << (nps ? "c, t" : "c")
     << ", l, stacked_phi(c), s);\n";
@@ -798,7 +799,7 @@ void Emitter::diagnostics(std::ostringstream& o) const {
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     o << "  e.kinetic += mbrt::kinetic_energy(" << mass_of(static_cast<int>(i)) << ", u" << at(static_cast<int>(i)) << ");\n";
     if (a_.gravity) {
-      o << "  e.potential -= " << mass_of(static_cast<int>(i)) << ".m * kGravity.dot(" << pose(static_cast<int>(i)) << ".r);\n";
+      o << "  e.potential -= " << mass_of(static_cast<int>(i)) << ".m * " << gravity() << ".dot(" << pose(static_cast<int>(i)) << ".r);\n";
     }
   }
   for (const TreeFrame& f : a_.tree_frames.frames) {
@@ -912,7 +913,9 @@ void Emitter::kernels(std::ostringstream& o) const {
 
 void Emitter::public_functions(std::ostringstream& o) const {
   const std::string stepper = a_.planar.applies ? "planar::Model" : "Model";
-  o << "State initial_state() noexcept { return Model::initial_state(); }\n\n"
+  o << (a_.tunable ? "State initial_state() noexcept { return Model::initial_state(kDefaultParameters); }\n\n"
+                    "State initial_state(const Parameters& p) noexcept { return Model::initial_state(p); }\n\n"
+                  : "State initial_state() noexcept { return Model::initial_state(); }\n\n")
     << "mbrt::StepStatus step(State& s, Workspace& w) noexcept {\n  return mbrt::schemes::"
     << step_function() << "<" << stepper << ">(s, w);\n}\n\n"
     << (tree_scheme() ? "void set_multipliers(State& s) noexcept { Model::set_multipliers(s); }\n\n" : "")
@@ -975,7 +978,7 @@ void Emitter::constraint_forces_function(std::ostringstream& o, const std::strin
   const bool gyro = any_gyroscopic() && !gyroscopic_loads();
   if (gyro) gyroscopic_accelerations_function(o);
   o << "static void constraint_forces(const ConstraintSystem& c, const Loads& l, const Rows& phi, State& s) noexcept {\n"
-    << (stabilization.empty() ? "  (void)phi;\n" : "") << "  BodyVectors a = free_accelerations(l);\n";
+    << (stabilization.empty() ? "  (void)phi;\n" : "") << "  BodyVectors a = free_accelerations(" << (planar_ ? "" : mass_argument()) << "l);\n";
   if (gyro) {
     o << "  const BodyVectors g = gyroscopic_accelerations(s);\n"
       << "  for (int b = 0; b < kBodies; ++b) a[b] += g[b];\n";

@@ -190,11 +190,20 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
     for (size_t k = 0; k < n; ++k) {
       const TreeFrame& f = frames[k];
       const Motion from = f.parent == kGround ? ground : a[static_cast<size_t>(f.parent)];
-      Motion ap = to_child(x[k], from) + c[k];
+      const Motion ap = to_child(x[k], from) + c[k];
+      // The joint's own component of a = ap + S qdd is u / D - W' ap, W'
+      // being W without its unit entry (no armature); qdd follows from it.
+      const int i = axis_index(f);
+      const bool plain = f.armature == 0.0;
       Expr wa = 0.0;
-      for (int r = 0; r < 6; ++r) wa = wa + w[k][static_cast<size_t>(r)] * component(ap, r);
-      const Expr qdd = u[k] * inv_d[k] - wa;
-      a[k] = ap + along_axis(f, qdd);
+      for (int r = 0; r < 6; ++r) {
+        if (r != i || !plain) wa = wa + w[k][static_cast<size_t>(r)] * component(ap, r);
+      }
+      const Expr along = u[k] * inv_d[k] - wa;
+      const Expr qdd = plain ? along - component(ap, i) : along;
+      a[k] = ap;
+      Expr& own = (f.revolute ? a[k].w : a[k].v)[2];
+      own = plain ? along : own + qdd;
       line.output("qdd[" + dof(k) + "]", qdd);
     }
     o << "// (q, qd" << (tree_external_loads() ? ", k, l" : "")

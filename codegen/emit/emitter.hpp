@@ -18,6 +18,7 @@
 
 #include "emit_cpp.hpp"
 #include "op_count.hpp"
+#include "parameters.hpp"
 #include "principal_frame.hpp"
 #include "planar_scene.hpp"
 
@@ -66,7 +67,7 @@ struct StateField {
 // Writes the generated files for one model.
 class Emitter {
  public:
-  Emitter(const Model& m, const Analysis& a) : m_(m), a_(a) {}
+  Emitter(const Model& m, const Analysis& a) : m_(m), a_(a), params_(parameters(m)) {}
 
   GeneratedCode run();
   // emit_c.cpp: <name>_c.h and <name>_c.cpp, the C interface over the C++ one.
@@ -75,7 +76,8 @@ class Emitter {
  private:
   // The emitter of the planar step: it owns an analysis with the planar constraint blocks.
   Emitter(const Model& m, Analysis&& planar_analysis)
-      : m_(m), owned_(std::make_shared<Analysis>(std::move(planar_analysis))), a_(*owned_), planar_(true) {}
+      : m_(m), owned_(std::make_shared<Analysis>(std::move(planar_analysis))), a_(*owned_), planar_(true),
+        params_(parameters(m)) {}
   Emitter planar_emitter() const {
     Analysis planar = a_;
     planar.constraints = a_.planar.constraints;
@@ -87,6 +89,7 @@ class Emitter {
   std::shared_ptr<const Analysis> owned_;  // the planar emitter's analysis
   const Analysis& a_;
   const bool planar_ = false;  // emitting the planar step's stages (emit_planar.cpp)
+  const std::vector<Parameter> params_;  // the model's tunable keys (docs/parameters.md)
 
   // The runtime type of the coordinates emitted: spatial, or its planar counterpart.
   std::string type(const std::string& spatial) const {
@@ -121,6 +124,7 @@ class Emitter {
   // property of the body, not a specialization, so the step's arithmetic is the
   // same with or without specializations.
   bool spherical_inertia(int i) const {
+    if (plan(i).tunable_inertia) return false;
     const Eigen::Matrix3d& j = body(i).inertia;
     return j == Eigen::Matrix3d(Eigen::Vector3d::Constant(j(0, 0)).asDiagonal());
   }
@@ -145,7 +149,26 @@ class Emitter {
   std::string acceleration_of(int i) const {
     return (plan(i).rigid ? "s.rigid_acceleration" : "s.particle_acceleration") + slot_of(i);
   }
-  std::string mass_of(int i) const { return body(i).name + "_mass"; }
+  std::string mass_of(int i) const { return body(i).name + "_mass" + (plan(i).tunable_mass ? "(s.params)" : ""); }
+  // The kernels that form M^-1 take the state where masses are runtime
+  // parameters (include/mbrt/schemes/staggered.hpp): parameter and argument.
+  std::string mass_parameter() const { return a_.tunable_masses ? "const State& s, " : ""; }
+  std::string mass_argument() const { return a_.tunable_masses ? "s, " : ""; }
+
+  // emit_parameters.cpp: runtime parameters (docs/parameters.md).
+  const Parameter* tunable(ParameterTarget target, int index, int component = 0) const;
+  // A model value in generated code: the parameter p.value[parameter::NAME]
+  // where it is tunable, else the file's literal.
+  std::string value_of(ParameterTarget target, int index, int component, double folded, const std::string& p) const;
+  std::string vec3_of(ParameterTarget target, int index, const Eigen::Vector3d& folded, const std::string& p) const;
+  bool tunable_gravity() const;
+  std::string gravity() const { return tunable_gravity() ? "gravity(s.params)" : "kGravity"; }
+  bool tunable_force(int model_index) const;
+  std::string force_name(int e) const;  // force_E, or force_E(s.params) where tunable
+  void parameter_declarations(std::ostringstream& o) const;  // the header's Parameters, kParameterInfo, set_parameter
+  void gravity_constant(std::ostringstream& o) const;
+  void mass_constant(std::ostringstream& o, int i) const;
+  void spring_constant(std::ostringstream& o, const Force& f, const ForcePlan& p, const std::string& n) const;
   std::string motion(int i) const {
     if (i == kGround) return "mbrt::" + type("BodyMotion") + "{kGroundPose, kGroundVelocity}";
     return "mbrt::" + type("BodyMotion") + "{k.pose" + at(i) + ", k.vel" + at(i) + "}";

@@ -55,7 +55,11 @@ inline M3 plane_congruence(const M3& x, size_t i, size_t j, const Expr& c, const
   M3 p;
   // With sigma the symmetric and kappa the antisymmetric part of x_ij:
   // p_ii = sum / 2 + d cos / 2 - sigma sin, p_ij = d sin / 2 + sigma cos + kappa.
-  if (symmetric) {
+  if (symmetric && c.is_constant() && s.is_constant()) {
+    // A constant turn: c^2 and s^2 fold, and a zero entry of x drops its term.
+    p[i][i] = (c * c) * x[i][i] + (s * s) * x[j][j] - s2 * x[i][j];
+    p[i][j] = p[j][i] = cs * d + c2 * x[i][j];
+  } else if (symmetric) {
     p[i][i] = sum * 0.5 + c2_half * d - s2 * x[i][j];
     p[i][j] = p[j][i] = cs * d + c2 * x[i][j];
   } else {
@@ -171,7 +175,7 @@ inline Inertia to_origin(const V3& r, const Inertia& I) {
   const M3 rcr = congruence(rx, I.C, true);
   Inertia out = I;
   for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) out.A[i][j] = out.A[j][i] = I.A[i][j] + k[i][j] + k[j][i] + rcr[i][j];
+    for (int j = i; j < 3; ++j) out.A[i][j] = out.A[j][i] = I.A[i][j] + (i == j ? 2.0 * k[i][i] : k[i][j] + k[j][i]) + rcr[i][j];
   out.B = I.B + product(rx, I.C);
   return out;
 }

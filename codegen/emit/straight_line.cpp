@@ -84,7 +84,11 @@ Expr StraightLine::multiply(const Expr& a, const Expr& b) {
     if (b.c_ == 1.0) return a;
     if (b.c_ == -1.0) return -a;
     const bool flip = a.negated_ != (b.c_ < 0.0);
-    const Expr product = record('*', ua, std::abs(b.c_));
+    // (y c1) c2 is y (c1 c2): one product where there were two.
+    const Node x = nodes_[static_cast<std::size_t>(ua.node_)];
+    const bool scaled = x.op == '*' && x.b.is_constant();
+    const double k = scaled ? x.b.c_ * std::abs(b.c_) : std::abs(b.c_);
+    const Expr product = !scaled ? record('*', ua, k) : k == 1.0 ? x.a : record('*', x.a, k);
     return flip ? -product : product;
   }
   Expr ub = b;

@@ -171,6 +171,12 @@ struct SolverSettings {
   Ali3pSettings ali3p;
 };
 
+// An entry of the model's `tunable:` list (docs/parameters.md), as written.
+struct TunableKey {
+  std::string key;  // "gravity", "upper_arm.mass", "pin.spring.stiffness", ...
+  SourceLocation where;
+};
+
 struct Model {
   std::string name;
   std::string file;  // path as given, for messages
@@ -182,6 +188,7 @@ struct Model {
   std::vector<Input> inputs;
   std::vector<Output> outputs;
   SolverSettings solver;
+  std::vector<TunableKey> tunable;  // kept as runtime parameters; everything else is folded
 
   const std::string& body_name(int index) const;  // "ground" for kGround
   // The file's name without its directory, for generated files: they must not

@@ -19,12 +19,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include "model.hpp"
+#include "parameters.hpp"
 
 namespace mbrt::codegen {
 
 namespace {
 
-const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers", "inputs", "outputs", "solver"};
+const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers", "inputs", "outputs", "solver", "tunable"};
 const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
                         "orientation", "velocity", "angular_velocity"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
@@ -822,6 +823,13 @@ Model build_model(const YAML::Node& root, const std::string& file) {
   }
 
   if (auto v = s.find("solver")) model.solver = parse_solver(*v);
+  if (auto tunable = s.find("tunable"); tunable && !is_empty_or_list(*tunable, "a list of tunable keys")) {
+    for (std::size_t i = 0; i < tunable->node.size(); ++i) {
+      const Value entry = element(*tunable, i);
+      model.tunable.push_back({read_string(entry, "a tunable key (docs/parameters.md)"), entry.where});
+    }
+    parameters(model);  // every entry names something tunable
+  }
   return model;
 }
 

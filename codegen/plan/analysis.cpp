@@ -10,6 +10,7 @@
 #include <amd.h>
 
 #include "constraint_evaluation.hpp"
+#include "parameters.hpp"
 #include "planar_scene.hpp"
 
 namespace mbrt::codegen {
@@ -300,6 +301,26 @@ std::vector<ConstraintBlock> constraint_blocks(const Model& model) {
   return blocks;
 }
 
+// Refuses a runtime parameter the scheme folds (docs/parameters.md): the tree
+// schemes' straight-line recursion folds every model value, and only the
+// schemes of the staggered step form M^-1 from runtime masses.
+void check_parameters(const Model& model, const std::vector<Parameter>& params) {
+  const mbrt::Scheme scheme = model.solver.scheme;
+  const bool staggered = scheme == mbrt::Scheme::staggered_pcst || scheme == mbrt::Scheme::baumgarte ||
+                         scheme == mbrt::Scheme::blajer;
+  for (const Parameter& p : params) {
+    const bool mass = p.target == ParameterTarget::mass || p.target == ParameterTarget::inertia;
+    if (!mbrt::joint_space(scheme) && (staggered || !mass)) continue;
+    throw ModelError(p.where, "tunable", "'" + p.entry + "': scheme " + std::string(mbrt::scheme_name(scheme)) +
+                                             " folds " + p.name + " into its step; " +
+                                             (mass ? "a tunable mass or inertia needs staggered-pcst, baumgarte or blajer"
+                                                   : "tunable keys need a scheme in absolute coordinates "
+                                                     "(staggered-pcst, staggered-nps, baumgarte, blajer, ali3p, "
+                                                     "rk4-projected)") +
+                                             " (docs/parameters.md)");
+  }
+}
+
 StepPlan plan_step(const Model& model, const Analysis& a) {
   StepPlan p;
   p.scheme = model.solver.scheme;
@@ -325,6 +346,7 @@ StepPlan plan_step(const Model& model, const Analysis& a) {
 }  // namespace
 
 mbrt::Scheme default_scheme(const Model& model) {
+  if (!model.tunable.empty()) return mbrt::Scheme::staggered_pcst;  // the tree schemes fold every parameter
   return plan_tree_frames(model, constraint_blocks(model)).refusal.empty() ? mbrt::Scheme::rk4_tree
                                                                           : mbrt::Scheme::staggered_pcst;
 }
@@ -354,6 +376,34 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     a.constraint_rows += block.rows;
   }
   a.rheonomic = !model.drivers.empty() || !specialize.no_drivers;
+  const std::vector<Parameter> params = parameters(model);
+  check_parameters(model, params);
+  a.tunable = !params.empty();
+  for (const Parameter& p : params) {
+    switch (p.target) {
+      case ParameterTarget::gravity: a.specialize.folded_weights = false; break;
+      case ParameterTarget::inertia:
+        a.bodies[static_cast<size_t>(p.index)].tunable_inertia = true;
+        a.bodies[static_cast<size_t>(p.index)].isotropic = false;
+        a.bodies[static_cast<size_t>(p.index)].principal_axes = true;  // its moments are the parameters
+        [[fallthrough]];
+      case ParameterTarget::mass:
+        a.bodies[static_cast<size_t>(p.index)].tunable_mass = a.tunable_masses = true;
+        a.specialize.folded_weights = false;
+        break;
+      case ParameterTarget::spring_damping: a.velocity_dependent_forces = true; break;
+      case ParameterTarget::position:
+      case ParameterTarget::velocity:
+      case ParameterTarget::angular_velocity:
+      case ParameterTarget::spring_stiffness:
+      case ParameterTarget::spring_rest: break;
+    }
+  }
+  // A tunable inertia may lose its isotropy: its gyroscopic torque is a load
+  // where the scheme applies it so (as for any non-isotropic body above).
+  for (BodyPlan& b : a.bodies) {
+    if (b.tunable_inertia && model.solver.scheme != mbrt::Scheme::staggered_pcst) a.velocity_dependent_forces = b.loaded = true;
+  }
   for (size_t i = 0; i < model.forces.size(); ++i) {
     const Force& f = model.forces[i];
     const std::string key = "forces[" + std::to_string(i) + "]";

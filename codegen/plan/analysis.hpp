@@ -24,6 +24,8 @@ struct BodyPlan {
   bool principal_axes;  // inertia diagonal in body axes: no product terms
   bool isotropic;       // equal principal moments: no gyroscopic torque
   bool loaded;          // some applied load acts on it (gravity, gyroscopic torque, force, input)
+  bool tunable_mass = false;     // its mass or inertia is a runtime parameter (docs/parameters.md)
+  bool tunable_inertia = false;  // its inertia's diagonal is: no isotropic specialization
 };
 
 enum class ConstraintSource { joint, driver };
@@ -133,6 +135,9 @@ struct Analysis {
   TreePlan tree;                           // staggered-nps only
   TreeFrames tree_frames;                  // staggered-tree only
   PlanarPlan planar;
+  // Runtime parameters (docs/parameters.md): the step reads them from State::params.
+  bool tunable = false;         // the model marks some key tunable
+  bool tunable_masses = false;  // some body's mass or inertia: M^-1 is formed from the parameters
   Specializations specialize;              // which ones the emitter may make
   std::vector<Skipped> skipped;            // the ones that applied, for the source's comment and reports
 };

@@ -170,6 +170,10 @@ std::string joined(const std::vector<std::string>& reasons) {
 PlanarPlan plan_planar(const Model& model, const Analysis& a) {
   PlanarPlan plan;
   if (!a.specialize.planar) return plan;
+  if (a.tunable) {  // the planar kernels fold the model's values
+    plan.refusal = "the model has tunable keys (docs/parameters.md)";
+    return plan;
+  }
   switch (model.solver.scheme) {
     case mbrt::Scheme::staggered_pcst:
     case mbrt::Scheme::baumgarte:

@@ -1,6 +1,7 @@
 // Main program of `mbrt sim`: runs one generated model and writes its
 // trajectory. Compiled by `mbrt sim` together with the model, with
 //   -DMBRT_MODEL_HEADER="<name>.hpp" -DMBRT_MODEL_NAMESPACE=mbrt::models::<name>
+// and, for a model with tunable keys, -DMBRT_MODEL_PARAMETERS (--set KEY=VALUE).
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -10,6 +11,8 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -25,11 +28,26 @@ struct Options {
   long every = 1;
   bool velocities = false;
   bool reactions = false;
+  std::vector<std::pair<std::string, double>> set;  // --set KEY=VALUE, in order
 };
 
 [[noreturn]] void usage(const char* why) {
-  std::fprintf(stderr, "sim driver: %s\nusage: sim [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions]\n", why);
+  std::fprintf(stderr, "sim driver: %s\nusage: sim [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--set KEY=VALUE]...\n", why);
   std::exit(2);
+}
+
+// "KEY=VALUE" with a finite number, or exit 2.
+std::pair<std::string, double> parse_set(const std::string& arg) {
+  const size_t eq = arg.find('=');
+  if (eq == std::string::npos || eq == 0) usage(("--set expects KEY=VALUE, got '" + arg + "'").c_str());
+  const std::string text = arg.substr(eq + 1);
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
+    usage(("--set " + arg + ": '" + text + "' is not a finite number").c_str());
+  }
+  return {arg.substr(0, eq), v};
 }
 
 Options parse(int argc, char** argv) {
@@ -45,6 +63,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--every") o.every = std::atol(value());
     else if (a == "--velocities") o.velocities = true;
     else if (a == "--reactions") o.reactions = true;
+    else if (a == "--set" || a.rfind("--set=", 0) == 0) o.set.push_back(parse_set(a == "--set" ? value() : argv[i] + 6));
     else usage(("unknown option " + a).c_str());
   }
   if (!(o.t_end >= 0.0)) usage("--t-end must be >= 0");
@@ -104,6 +123,35 @@ void write_row(std::FILE* f, const model::State& s, const Options& o) {
   std::fprintf(f, "\n");
 }
 
+// The initial state with the --set parameters applied by name (docs/parameters.md);
+// exit 2 for a key the model does not have or a state off the joints.
+model::State initial_state(const Options& o) {
+#ifdef MBRT_MODEL_PARAMETERS
+  model::Parameters p = model::kDefaultParameters;
+  for (const auto& [key, value] : o.set) {
+    if (model::set_parameter(p, key, value)) continue;
+    std::string names;
+    for (const mbrt::ParameterInfo& info : model::kParameterInfo) names += std::string(names.empty() ? "" : ", ") + info.name;
+    usage(("--set " + key + ": no tunable parameter of that name; the model's are " + names).c_str());
+  }
+  const model::State s = model::initial_state(p);
+  const mbrt::ConstraintViolation v = model::constraint_violation(s);
+  constexpr double kTolerance = 1e-8;  // as the generator's check of the model file's initial state
+  if (!o.set.empty() && (v.position > kTolerance || v.velocity > kTolerance)) {
+    char why[256];
+    std::snprintf(why, sizeof why,
+                  "the --set initial state violates the joints (position %.3g, velocity %.3g, tolerance %.0e): "
+                  "set positions and velocities that satisfy them",
+                  v.position, v.velocity, kTolerance);
+    usage(why);
+  }
+  return s;
+#else
+  if (!o.set.empty()) usage(("--set " + o.set.front().first + ": the model has no tunable keys (docs/parameters.md)").c_str());
+  return model::initial_state();
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -117,7 +165,7 @@ int main(int argc, char** argv) {
     }
     write_header(csv, opt);
   }
-  model::State s = model::initial_state();
+  model::State s = initial_state(opt);
   const auto workspace = std::make_unique<model::Workspace>();  // large models: not on the stack
   const double e0 = model::energy(s).total();
   const long steps = std::lround(opt.t_end / model::kStep);

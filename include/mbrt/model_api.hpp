@@ -1,6 +1,10 @@
 // Types every generated model shares in its interface.
 #pragma once
 
+#include <array>
+#include <cstddef>
+#include <string_view>
+
 #include "mbrt/body_state.hpp"
 #include "mbrt/step_status.hpp"
 
@@ -18,6 +22,33 @@ struct ConstraintInfo {  // a joint or a driver
   int first_row;
   int rows;
 };
+
+// A runtime parameter (docs/parameters.md): a key the model file marks
+// tunable, "upper_arm.mass", "gravity.z", "pin.spring.stiffness", and the
+// file's value.
+struct ParameterInfo {
+  const char* name;
+  double default_value;
+};
+
+template <std::size_t N>
+constexpr std::array<double, N> default_values(const std::array<ParameterInfo, N>& info) noexcept {
+  std::array<double, N> v{};
+  for (std::size_t i = 0; i < N; ++i) v[i] = info[i].default_value;
+  return v;
+}
+
+// values[i] = value for the parameter of that name; false if there is none.
+template <std::size_t N>
+bool set_parameter(const std::array<ParameterInfo, N>& info, std::array<double, N>& values, std::string_view name,
+                   double value) noexcept {
+  for (std::size_t i = 0; i < N; ++i) {
+    if (name != info[i].name) continue;
+    values[i] = value;
+    return true;
+  }
+  return false;
+}
 
 // A command input: what it drives and the range a command must respect.
 struct InputInfo {

@@ -26,15 +26,35 @@
 
 namespace mbrt::schemes {
 
+// The kernels that form M^-1. Where masses are runtime parameters
+// (docs/parameters.md) the model's take the state, which holds them.
+template <class M>
+void constraint_directions(const typename M::State& s, typename M::ConstraintSystem& c) noexcept {
+  if constexpr (requires { M::constraint_directions(s, c); }) M::constraint_directions(s, c);
+  else M::constraint_directions(c);
+}
+
+template <class M>
+typename M::BodyVectors free_accelerations(const typename M::State& s, const typename M::Loads& l) noexcept {
+  if constexpr (requires { M::free_accelerations(s, l); }) return M::free_accelerations(s, l);
+  else return M::free_accelerations(l);
+}
+
+template <class M>
+bool factorize_system(const typename M::State& s, typename M::ConstraintSystem& c) noexcept {
+  if constexpr (requires { M::factorize(s, c); }) return M::factorize(s, c);
+  else return M::factorize(c);
+}
+
 // (c, l, u_half) => (u): staggered-pcst's implicit stage. The end-of-step
 // velocities satisfy the velocity constraints, regularized by the penalty eps
 // (docs/staggered-pcst.md eq. 5):
 //   (h/2) (S + 2 eps/h I) mu = B u_hat,  u = u_hat - h/2 M^-1 B^T mu.
 template <class M>
-void implicit_stage(const typename M::ConstraintSystem& c, const typename M::Loads& l,
+void implicit_stage(const typename M::State& s, const typename M::ConstraintSystem& c, const typename M::Loads& l,
                     const typename M::BodyVectors& u_half, typename M::BodyVectors& u) noexcept {
   constexpr double h = M::kStep;
-  const typename M::BodyVectors a_free = M::free_accelerations(l);
+  const typename M::BodyVectors a_free = free_accelerations<M>(s, l);
   for (std::size_t b = 0; b < u.size(); ++b) u[b] = u_half[b] + (0.5 * h) * a_free[b];
   typename M::Rows mu = (2.0 / h) * M::velocity_residual(c, u);
   M::solve(c, mu);
@@ -83,13 +103,13 @@ void correct_velocities(const typename M::ConstraintSystem& c, typename M::State
 
 // staggered-nps factorizes the tree and the cut rows where the others factorize S.
 template <class M>
-bool factorize(typename M::Workspace& w) noexcept {
+bool factorize(const typename M::State& s, typename M::Workspace& w) noexcept {
   if constexpr (M::kScheme == Scheme::staggered_nps) {
     bool positive = M::factorize_tree(w.k, w.c, w.t);
     if constexpr (M::kCutRows > 0) positive = M::factorize_cut(w.c, w.t) && positive;
     return positive;
   } else {
-    return M::factorize(w.c);
+    return factorize_system<M>(s, w.c);
   }
 }
 
@@ -108,7 +128,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     // Directions of the first half kick's constraint forces, at q(t).
     M::kinematics(s, w.k);
     M::constraint_rows(w.k, s.t, w.c0);
-    M::constraint_directions(w.c0);
+    constraint_directions<M>(s, w.c0);
     M::kick(s);
     BodyVectors u_kick = M::generalized_velocities(s);
     M::drift(s);
@@ -116,7 +136,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     // position stage moves the positions onto the constraints and keeps the factor.
     M::kinematics(s, w.k);
     M::constraint_rows(w.k, s.t, w.c);
-    positive = M::factorize(w.c);
+    positive = factorize_system<M>(s, w.c);
     position_stage<M>(u_kick, s, w);
   } else {
     M::kick(s);
@@ -135,9 +155,9 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     w.k.vel = M::velocities_of(s);
     M::constraint_rows(w.k, s.t, w.c);
     if constexpr (M::kPositionStage) {
-      M::constraint_directions(w.c);  // the factor stays that of the first drift
+      constraint_directions<M>(s, w.c);  // the factor stays that of the first drift
     } else {
-      positive = factorize<M>(w);
+      positive = factorize<M>(s, w);
     }
     // Implicit stages: the first evaluates velocity-dependent loads at the
     // predicted end-of-step velocities u_half + h/2 a_old, the next ones at
@@ -150,7 +170,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
       if constexpr (M::kScheme == Scheme::staggered_nps) {
         M::implicit_stage(w.c, w.t, w.l, u_half, u);
       } else {
-        implicit_stage<M>(w.c, w.l, u_half, u);
+        implicit_stage<M>(s, w.c, w.l, u_half, u);
       }
     }
     M::set_velocities(u, s);
@@ -167,7 +187,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     M::set_velocities(u, s);
     w.k.vel = M::velocities_of(s);
     M::constraint_rows(w.k, s.t, w.c);
-    positive = M::factorize(w.c);
+    positive = factorize_system<M>(s, w.c);
     const typename M::Rows phi = M::stacked_phi(w.c);
     // Implicit stages, fixed-point passes on u = u_half + h/2 a(t + h, u).
     for (int stage = 0; stage < M::kStages; ++stage) {
@@ -185,7 +205,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
         if (i > 0) {
           M::kinematics(s, w.k);
           M::constraint_rows(w.k, s.t, w.c);
-          positive = M::factorize(w.c) && positive;
+          positive = factorize_system<M>(s, w.c) && positive;
         }
         M::correct_positions(w.c, s);
       }

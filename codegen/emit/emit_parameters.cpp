@@ -1,0 +1,118 @@
+// Runtime parameters (docs/parameters.md): the header's Parameters and its
+// name table, and the model values the step reads from State::params.
+#include <algorithm>
+
+#include "emitter.hpp"
+
+namespace mbrt::codegen {
+
+const Parameter* Emitter::tunable(ParameterTarget target, int index, int component) const {
+  const auto it = std::find_if(params_.begin(), params_.end(), [&](const Parameter& p) {
+    return p.target == target && p.index == index && p.component == component;
+  });
+  return it == params_.end() ? nullptr : &*it;
+}
+
+std::string Emitter::value_of(ParameterTarget target, int index, int component, double folded,
+                              const std::string& p) const {
+  const Parameter* t = tunable(target, index, component);
+  return t ? p + ".value[parameter::" + parameter_identifier(t->name) + "]" : num(folded);
+}
+
+std::string Emitter::vec3_of(ParameterTarget target, int index, const Eigen::Vector3d& folded,
+                             const std::string& p) const {
+  return "mbrt::Vec3(" + value_of(target, index, 0, folded.x(), p) + ", " + value_of(target, index, 1, folded.y(), p) +
+         ", " + value_of(target, index, 2, folded.z(), p) + ")";
+}
+
+bool Emitter::tunable_gravity() const {
+  return std::any_of(params_.begin(), params_.end(), [](const Parameter& p) { return p.target == ParameterTarget::gravity; });
+}
+
+bool Emitter::tunable_force(int model_index) const {
+  return std::any_of(params_.begin(), params_.end(), [&](const Parameter& p) {
+    return p.index == model_index && (p.target == ParameterTarget::spring_stiffness ||
+                                      p.target == ParameterTarget::spring_damping || p.target == ParameterTarget::spring_rest);
+  });
+}
+
+std::string Emitter::force_name(int e) const {
+  const std::string n = "force_" + std::to_string(e);
+  return tunable_force(a_.forces[static_cast<size_t>(e)].model_index) ? n + "(s.params)" : n;
+}
+
+void Emitter::parameter_declarations(std::ostringstream& o) const {
+  o << "// Runtime parameters (docs/parameters.md): the keys the model file marks\n"
+    << "// tunable, defaults from the file. The step reads them from State::params;\n"
+    << "// set them by name (set_parameter) or index (parameter::NAME) before or\n"
+    << "// between runs, then initial_state(p) for a run from the start.\n"
+    << "inline constexpr int kParameters = " << params_.size() << ";\n"
+    << "inline constexpr std::array<mbrt::ParameterInfo, kParameters> kParameterInfo{{\n";
+  for (const Parameter& p : params_) o << "    {\"" << p.name << "\", " << num(p.value) << "},\n";
+  o << "}};\n\nnamespace parameter {\n";
+  for (size_t i = 0; i < params_.size(); ++i) {
+    o << "inline constexpr int " << parameter_identifier(params_[i].name) << " = " << i << ";\n";
+  }
+  o << "}  // namespace parameter\n\n"
+    << "struct Parameters {\n  std::array<double, kParameters> value;  // by parameter::NAME\n};\n\n"
+    << "inline constexpr Parameters kDefaultParameters{mbrt::default_values(kParameterInfo)};\n\n"
+    << "// Sets the parameter named name (kParameterInfo); false, p unchanged, if there is none.\n"
+    << "inline bool set_parameter(Parameters& p, std::string_view name, double value) noexcept {\n"
+    << "  return mbrt::set_parameter(kParameterInfo, p.value, name, value);\n}\n\n";
+}
+
+void Emitter::gravity_constant(std::ostringstream& o) const {
+  const Eigen::Vector3d g = m_.gravity.value_or(Eigen::Vector3d::Zero());
+  if (!tunable_gravity()) {
+    o << "const mbrt::Vec3 kGravity = " << vec3(g) << ";\n";
+    return;
+  }
+  o << "mbrt::Vec3 gravity(const Parameters& p) noexcept { return " << vec3_of(ParameterTarget::gravity, -1, g, "p")
+    << "; }\n";
+}
+
+void Emitter::mass_constant(std::ostringstream& o, int i) const {
+  const Body& b = body(i);
+  const std::string m = value_of(ParameterTarget::mass, i, 0, b.mass, "p");
+  if (!plan(i).tunable_mass) {
+    o << (plan(i).rigid ? "const " : "constexpr ");
+  }
+  std::string type, value;
+  if (!plan(i).rigid) {
+    type = "mbrt::PointMass";
+    value = "{" + m + "}";
+  } else if (plan(i).principal_axes) {
+    type = "mbrt::PrincipalInertia";
+    value = "{" + m + ", " + vec3_of(ParameterTarget::inertia, i, b.inertia.diagonal(), "p") + "}";
+  } else {
+    const PrincipalFrame f = principal_frame(b.inertia);
+    type = "mbrt::FullInertia";
+    value = "{" + m + ", " + mat3(b.inertia) + ", " + mat3(b.inertia.inverse()) + ",\n    " + vec3(f.moments) + ", " +
+            vec4(f.axes) + "}";
+  }
+  if (plan(i).tunable_mass) {
+    o << type << " " << body(i).name << "_mass(const Parameters& p) noexcept { return " << value << "; }\n";
+  } else {
+    o << type << " " << body(i).name << "_mass" << value << ";\n";
+  }
+}
+
+void Emitter::spring_constant(std::ostringstream& o, const Force& f, const ForcePlan& p, const std::string& n) const {
+  const int e = p.model_index;
+  const bool spring = f.type == ForceType::spring_damper;
+  const std::string values =
+      value_of(ParameterTarget::spring_stiffness, e, 0, spring ? p.spring.stiffness : p.joint_spring.stiffness, "p") +
+      ", " + value_of(ParameterTarget::spring_damping, e, 0, spring ? p.spring.damping : p.joint_spring.damping, "p") +
+      ", " + value_of(ParameterTarget::spring_rest, e, 0, spring ? p.spring.rest_length : p.joint_spring.rest, "p");
+  const std::string type = spring ? "mbrt::SpringDamper" : "mbrt::JointSpring";
+  const std::string init = spring ? vec3(axes(p.spring.s1)) + ", " + vec3(axes(p.spring.s2)) + ", " + values : values;
+  const std::string comment = spring ? "spring_damper " + m_.body_name(f.body1) + " - " + m_.body_name(f.body2)
+                                     : "joint_spring " + jname(f.joint) + ": stiffness, damping, rest";
+  if (tunable_force(e)) {
+    o << type << " " << n << "(const Parameters& p) noexcept { return {" << init << "}; }  // " << comment << "\n";
+  } else {
+    o << "const " << type << " " << n << "{" << init << "};  // " << comment << "\n";
+  }
+}
+
+}  // namespace mbrt::codegen
