@@ -19,6 +19,7 @@ import hashlib
 import json
 import pathlib
 import shlex
+import signal
 import subprocess
 import sys
 import tempfile
@@ -234,7 +235,12 @@ def run(argv):
     return 0
 
 
+def _terminated(signum, frame):
+    raise SystemExit(128 + signum)  # unwinds like Ctrl-C: no more samples start, a Slurm job is cancelled
+
+
 def main(argv=None):
+    signal.signal(signal.SIGTERM, _terminated)
     try:
         return run(sys.argv[1:] if argv is None else argv)
     except (UsageError, OutDirError) as e:
