@@ -116,8 +116,7 @@ def generation_options(args):
 def build(model, options, program="sim"):
     """The compiled program's path (`mbrt build`)."""
     r = subprocess.run([str(_mbrt_executable(None)), "build", model, "--program", program, *options],
-                       stdout=subprocess.PIPE,
-                       stderr=subprocess.PIPE, text=True)
+                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     message = r.stderr.split("\n\n")[0].strip()
     if r.returncode == 2:
         raise UsageError(message)
