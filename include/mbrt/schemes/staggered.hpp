@@ -20,6 +20,9 @@
 // position stage), t (tree system, staggered-nps) and l (loads).
 #pragma once
 
+#include <type_traits>
+#include <utility>
+
 #include "mbrt/scheme.hpp"
 #include "mbrt/schemes/state_checks.hpp"
 #include "mbrt/step_status.hpp"
@@ -27,22 +30,42 @@
 namespace mbrt::schemes {
 
 // The kernels that form M^-1. Where masses are runtime parameters
-// (docs/parameters.md) the model's take the state, which holds them.
+// (docs/parameters.md) the model's take the state, which holds them; the
+// traits below tell the two forms apart (C++17: generated models build with it).
+template <class M, class = void>
+struct directions_read_state : std::false_type {};
+template <class M>
+struct directions_read_state<M, std::void_t<decltype(M::constraint_directions(
+                                    std::declval<const typename M::State&>(), std::declval<typename M::ConstraintSystem&>()))>>
+    : std::true_type {};
+template <class M, class = void>
+struct accelerations_read_state : std::false_type {};
+template <class M>
+struct accelerations_read_state<M, std::void_t<decltype(M::free_accelerations(std::declval<const typename M::State&>(),
+                                                                               std::declval<const typename M::Loads&>()))>>
+    : std::true_type {};
+template <class M, class = void>
+struct factorize_reads_state : std::false_type {};
+template <class M>
+struct factorize_reads_state<M, std::void_t<decltype(M::factorize(std::declval<const typename M::State&>(),
+                                                                  std::declval<typename M::ConstraintSystem&>()))>>
+    : std::true_type {};
+
 template <class M>
 void constraint_directions(const typename M::State& s, typename M::ConstraintSystem& c) noexcept {
-  if constexpr (requires { M::constraint_directions(s, c); }) M::constraint_directions(s, c);
+  if constexpr (directions_read_state<M>::value) M::constraint_directions(s, c);
   else M::constraint_directions(c);
 }
 
 template <class M>
 typename M::BodyVectors free_accelerations(const typename M::State& s, const typename M::Loads& l) noexcept {
-  if constexpr (requires { M::free_accelerations(s, l); }) return M::free_accelerations(s, l);
+  if constexpr (accelerations_read_state<M>::value) return M::free_accelerations(s, l);
   else return M::free_accelerations(l);
 }
 
 template <class M>
 bool factorize_system(const typename M::State& s, typename M::ConstraintSystem& c) noexcept {
-  if constexpr (requires { M::factorize(s, c); }) return M::factorize(s, c);
+  if constexpr (factorize_reads_state<M>::value) return M::factorize(s, c);
   else return M::factorize(c);
 }
 
