@@ -1,14 +1,15 @@
 # mbrt_add_model(<target> MODEL <model.yaml>
 #                [NAME <name>] [SCHEME <scheme>] [STEP <h>] [EULER_UPDATES <k>] [PROJECT_INITIAL] [LCM]
-#                [WARNINGS] [GEN_OPTIONS <mbrt gen options>...])
+#                [WARNINGS] [C_INTERFACE] [GEN_OPTIONS <mbrt gen options>...])
 #
 # Generates the model's step with `mbrt gen` at build time (again whenever the
 # model file or the generator changes) and adds it as a static library
 # <target>. Include "<name>.hpp" (name from the model file, or NAME to build
 # several variants of one model into one program) and call
 # mbrt::models::<name>::step(); C programs include "<name>_c.h" and call
-# <name>_step() (the C interface is compiled into the library too;
-# docs/c_interface.md). With LCM (models with inputs and outputs),
+# <name>_step() (the C interface is compiled into the library too, unless
+# the calling directory sets MBRT_MODEL_C_INTERFACE to OFF and the model is
+# not marked C_INTERFACE; docs/c_interface.md). With LCM (models with inputs and outputs),
 # lcm-gen also runs on the model's message types and "<name>_lcm.hpp" packs
 # Outputs and Inputs into them ("<name>_can.hpp" packs them into CAN frames as
 # "<name>.dbc" describes); the target then links liblcm. GEN_OPTIONS
@@ -18,7 +19,7 @@
 include(${CMAKE_CURRENT_LIST_DIR}/MbrtWarnings.cmake)
 
 function(mbrt_add_model target)
-  cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM;WARNINGS" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
+  cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM;WARNINGS;C_INTERFACE" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "mbrt_add_model(${target}): MODEL <file.yaml> is required")
   endif()
@@ -70,7 +71,11 @@ function(mbrt_add_model target)
     DEPENDS "${model}" mbrt::mbrt_cli
     COMMENT "mbrt: generating ${name} from ${ARG_MODEL}"
     VERBATIM)
-  add_library(${target} STATIC ${outputs})
+  set(sources ${outputs})
+  if(DEFINED MBRT_MODEL_C_INTERFACE AND NOT MBRT_MODEL_C_INTERFACE AND NOT ARG_C_INTERFACE)
+    list(REMOVE_ITEM sources "${dir}/${name}_c.cpp")
+  endif()
+  add_library(${target} STATIC ${sources})
   target_include_directories(${target} PUBLIC "${dir}")
   target_link_libraries(${target} PUBLIC mbrt::mbrt)
   if(ARG_LCM)
