@@ -2,8 +2,6 @@
 // CSV and JSON outputs, the compile cache, and its errors.
 #include <doctest/doctest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,6 +9,8 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "shell_command.hpp"
 
 namespace fs = std::filesystem;
 
@@ -29,13 +29,8 @@ Run mbrt(const std::string& args) {
   const std::string err_file = (dir / "stderr.txt").string();
   const std::string cmd = "MBRT_CACHE_DIR='" + (dir / "cache").string() + "' '" + MBRT_EXE + "' " + args + " 2>'" +
                           err_file + "'";
-  Run r{0, "", ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const CommandRun c = run_shell(cmd);
+  Run r{c.exit_code, c.out, ""};
   std::ifstream e(err_file);
   std::stringstream s;
   s << e.rdbuf();

@@ -21,6 +21,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "shell_command.hpp"
+
 #include <Eigen/Core>
 #include <mujoco/mujoco.h>
 
@@ -33,22 +35,11 @@ constexpr int kEvery = 100;             // CSV rows every 100 steps
 constexpr double kPositionTol = 1e-6;   // m, centre of mass
 constexpr double kEnergyTol = 1e-9;     // J, relative to the energy's magnitude
 
-struct Run {
-  int exit_code;
-  std::string out;
-};
+using Run = CommandRun;
 
 Run mbrt(const std::string& args) {
-  const std::string cmd = "MBRT_CACHE_DIR='" + (fs::path(MBRT_TEST_WORK_DIR) / "cache").string() + "' '" + MBRT_EXE +
-                          "' " + args;
-  Run r{0, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return run_shell("MBRT_CACHE_DIR='" + (fs::path(MBRT_TEST_WORK_DIR) / "cache").string() + "' '" + MBRT_EXE + "' " +
+                   args);
 }
 
 // A numeric field of sim's summary, the JSON object on its last line (parsed strictly).

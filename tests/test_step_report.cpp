@@ -4,8 +4,6 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -13,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "flop_count.hpp"
+#include "shell_command.hpp"
 
 namespace fs = std::filesystem;
 using mbrt::codegen::flops_of_instruction;
@@ -25,13 +24,9 @@ nlohmann::json run(const std::string& args) {
   fs::create_directories(dir);
   const std::string cmd = "MBRT_CACHE_DIR='" + (dir / "cache").string() + "' '" + MBRT_EXE + "' " + args +
                           " -o '" + (dir / "gen").string() + "' 2>/dev/null";
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  REQUIRE(pclose(p) == 0);
-  return nlohmann::json::parse(out);
+  const CommandRun r = run_shell(cmd);
+  REQUIRE(r.exit_code == 0);
+  return nlohmann::json::parse(r.out);
 }
 
 }  // namespace
