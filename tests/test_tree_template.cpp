@@ -58,7 +58,7 @@ struct Pendulum {
   }
   static void kinematics(const State&, Kinematics&) {}
   static void tree_loads(const Kinematics&, const State&, Loads&) {}
-  static void joint_accelerations(const Dofs&, const HalfAngles& ha, const Dofs&, const Kinematics&, const Loads&,
+  static void joint_accelerations(const State&, const HalfAngles& ha, const Dofs&, const Kinematics&, const Loads&,
                                   Dofs& qdd) {
     qdd[0] = -(kG / kLength) * 2.0 * ha[0].s * ha[0].c;
   }
@@ -73,9 +73,9 @@ struct MidpointPendulum : Pendulum {
 // large enough for every term of the method to show.
 struct LinearPendulum : Pendulum {
   static constexpr double kStep = 0.05;
-  static void joint_accelerations(const Dofs& q, const HalfAngles&, const Dofs&, const Kinematics&, const Loads&,
+  static void joint_accelerations(const State& s, const HalfAngles&, const Dofs&, const Kinematics&, const Loads&,
                                   Dofs& qdd) {
-    qdd[0] = -(kG / kLength) * q[0];
+    qdd[0] = -(kG / kLength) * s.q[0];
   }
 };
 
@@ -85,7 +85,7 @@ State start(double angle) {
   HalfAngles ha;
   Pendulum::half_angles(s.q, ha);
   Pendulum::body_states(s.q, ha, s.qd, s);
-  Pendulum::joint_accelerations(s.q, ha, s.qd, {}, {}, s.qdd);
+  Pendulum::joint_accelerations(s, ha, s.qd, {}, {}, s.qdd);
   return s;
 }
 

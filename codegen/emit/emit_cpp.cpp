@@ -757,13 +757,30 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
     o << "};  // safe values\n";
   }
   if (tree_scheme()) {
-    o << "  s.q.fill(0.0);\n  s.qd = {";
-    std::vector<double> rates(m_.bodies.size(), 0.0);
-    for (const TreeFrame& f : a_.tree_frames.frames) rates[static_cast<size_t>(f.body)] = f.rate0;
-    for (size_t k = 0; k < rates.size(); ++k) o << (k ? ", " : "") << num(rates[k]);
-    o << "};\n  HalfAngles ha;\n  half_angles(s.q, ha);\n  body_states(s.q, ha, s.qd, s);\n"
+    // The joint coordinates are zero at the file's pose; a tunable one is
+    // the model's coordinate (body 2 relative to body 1), the tree's q times sign.
+    const auto joint_value = [&](const TreeFrame& f, ParameterTarget target, double folded) {
+      if (!tunable(target, f.joint, 0)) return num(folded);
+      return (f.sign < 0.0 ? "-" : "") + value_of(target, f.joint, 0, 0.0, "p");
+    };
+    std::vector<std::string> q(m_.bodies.size(), "0.0"), rates(m_.bodies.size(), "0.0");
+    for (const TreeFrame& f : a_.tree_frames.frames) {
+      q[static_cast<size_t>(f.body)] = joint_value(f, ParameterTarget::joint_coordinate, 0.0);
+      rates[static_cast<size_t>(f.body)] = joint_value(f, ParameterTarget::joint_rate, f.rate0);
+    }
+    const auto list = [&](const std::vector<std::string>& v) {
+      std::string out;
+      for (size_t k = 0; k < v.size(); ++k) out += (k ? ", " : "") + v[k];
+      return out;
+    };
+    if (std::all_of(q.begin(), q.end(), [](const std::string& x) { return x == "0.0"; })) {
+      o << "  s.q.fill(0.0);\n";
+    } else {
+      o << "  s.q = {" << list(q) << "};\n";
+    }
+    o << "  s.qd = {" << list(rates) << "};\n  HalfAngles ha;\n  half_angles(s.q, ha);\n  body_states(s.q, ha, s.qd, s);\n"
       << "  Kinematics k;\n  kinematics(s, k);\n  Loads l;\n  tree_loads(k, s, l);\n"
-      << "  joint_accelerations(s.q, ha, s.qd, k, l, s.qdd);\n  set_multipliers(s);\n  return s;\n}\n\n";
+      << "  joint_accelerations(s, ha, s.qd, k, l, s.qdd);\n  set_multipliers(s);\n  return s;\n}\n\n";
     return;
   }
   const bool ali3p = scheme_kind() == Scheme::ali3p;
@@ -932,7 +949,7 @@ void Emitter::reactions_function(std::ostringstream& o) const {
     o << "// (s) => (s.rigid_acceleration, s.lambda): what the joint coordinates imply,\n"
       << "// from the index-1 multipliers S lambda = B M^-1 F + quad.\n"
       << "static void set_multipliers(State& s) noexcept {\n"
-      << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n  factorize(c);\n"
+      << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n  factorize(" << mass_argument() << "c);\n"
       << "  Loads l;\n  applied_loads(k, s, l);\n  constraint_forces(c, l, stacked_phi(c), s);\n}\n\n";
   }
   o << "static void reactions(const State& " << (tree_scheme() ? "given" : "s") << ", Reactions& r) noexcept {\n";

@@ -120,6 +120,11 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
   // The recursion, gravity entering as the ground's acceleration -g.
   {
     StraightLine line;
+    // A model value, or the runtime parameter that replaces it.
+    const auto value = [&](ParameterTarget target, int index, int component, double folded) {
+      return tunable(target, index, component) ? line.input(value_of(target, index, component, folded, "s.params"))
+                                               : Expr(folded);
+    };
     std::vector<Transform> x(n);
     std::vector<Motion> v(n), c(n), a(n);
     std::vector<Inertia> ia(n);
@@ -128,7 +133,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
     std::vector<std::array<Expr, 6>> w(n);
     for (size_t k = 0; k < n; ++k) {
       const TreeFrame& f = frames[k];
-      const Expr q = line.input("q[" + dof(k) + "]");
+      const Expr q = line.input("s.q[" + dof(k) + "]");
       x[k] = transform_of(f, "ha[" + dof(k) + "]", q);
       const Motion s_qd = along_axis(f, line.input("qd[" + dof(k) + "]"));
       if (f.parent == kGround) {
@@ -138,8 +143,25 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
         v[k] = to_child(x[k], v[static_cast<size_t>(f.parent)]) + s_qd;
         c[k] = cross(v[k], s_qd);
       }
-      ia[k] = rigid_inertia(f.mass, f.com, f.inertia);
-      pa[k] = rigid_bias(f.mass, f.com, f.inertia, v[k]);
+      if (plan(f.body).tunable_mass) {
+        // The inertia in frame axes from the principal moments: E diag(J) E^T.
+        const Eigen::Vector3d j = body(f.body).inertia.diagonal();
+        M3 ic;
+        for (size_t r = 0; r < 3; ++r) {
+          for (size_t c = 0; c < 3; ++c) {
+            for (int m = 0; m < 3; ++m) {
+              const double e = f.body_axes(static_cast<Eigen::Index>(r), m) * f.body_axes(static_cast<Eigen::Index>(c), m);
+              if (e != 0.0) ic[r][c] = ic[r][c] + e * value(ParameterTarget::inertia, f.body, m, j[m]);
+            }
+          }
+        }
+        const Expr mass = value(ParameterTarget::mass, f.body, 0, f.mass);
+        ia[k] = rigid_inertia(mass, f.com, ic);
+        pa[k] = rigid_bias(mass, f.com, ic, v[k]);
+      } else {
+        ia[k] = rigid_inertia(f.mass, f.com, f.inertia);
+        pa[k] = rigid_bias(f.mass, f.com, constant(f.inertia), v[k]);
+      }
       if (tree_external_loads()) {
         // The applied wrench at the COM: force in world axes, torque in body axes.
         const std::string b = "body::" + body(f.body).name;
@@ -186,7 +208,8 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       pa[p] = pa[p] + to_parent(x[k], bias);
     }
     const Eigen::Vector3d g = m_.gravity.value_or(Eigen::Vector3d::Zero());
-    const Motion ground{V3{0.0, 0.0, 0.0}, constant(Eigen::Vector3d(-g))};
+    Motion ground{V3{0.0, 0.0, 0.0}, V3{0.0, 0.0, 0.0}};
+    for (int i = 0; i < 3; ++i) ground.v[static_cast<size_t>(i)] = -value(ParameterTarget::gravity, -1, i, g[i]);
     for (size_t k = 0; k < n; ++k) {
       const TreeFrame& f = frames[k];
       const Motion from = f.parent == kGround ? ground : a[static_cast<size_t>(f.parent)];
@@ -206,10 +229,10 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       own = plain ? along : own + qdd;
       line.output("qdd[" + dof(k) + "]", qdd);
     }
-    o << "// (q, qd" << (tree_external_loads() ? ", k, l" : "")
+    o << "// (s.q, qd" << (tree_external_loads() ? ", k, l" : "") << (a_.tunable ? ", s.params" : "")
       << ") => (qdd): the articulated-body recursion, this model's nonzero terms only.\n"
       << line.count().comment() << "\n"
-      << "static void joint_accelerations([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, "
+      << "static void joint_accelerations([[maybe_unused]] const State& s, [[maybe_unused]] const HalfAngles& ha, "
       << "[[maybe_unused]] const Dofs& qd, "
       << "[[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {\n"
       << line.code("  ") << "}\n\n";

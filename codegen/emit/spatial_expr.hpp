@@ -140,20 +140,35 @@ inline Wrench times(const Inertia& I, const Motion& m) {
 }
 
 // A rigid body's inertia about the frame origin: mass m, COM c, inertia Ic
-// about the COM (Featherstone eq. 2.63).
+// about the COM (Featherstone eq. 2.63). The first form folds the sums of
+// known values; the second takes a mass and an inertia the generated code
+// reads (runtime parameters).
 inline Inertia rigid_inertia(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& ic) {
   const Eigen::Matrix3d cx = (Eigen::Matrix3d() << 0, -c.z(), c.y(), c.z(), 0, -c.x(), -c.y(), c.x(), 0).finished();
   return {constant(Eigen::Matrix3d(ic + m * cx * cx.transpose())), constant(Eigen::Matrix3d(m * cx)),
           constant(Eigen::Matrix3d(m * Eigen::Matrix3d::Identity()))};
 }
+inline Inertia rigid_inertia(const Expr& m, const Eigen::Vector3d& c, const M3& ic) {
+  const Eigen::Matrix3d cx = (Eigen::Matrix3d() << 0, -c.z(), c.y(), c.z(), 0, -c.x(), -c.y(), c.x(), 0).finished();
+  const M3 ccx = constant(Eigen::Matrix3d(cx * cx.transpose()));
+  Inertia out;
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j) {
+      out.A[i][j] = ic[i][j] + m * ccx[i][j];
+      out.B[i][j] = m * cx(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+      out.C[i][j] = i == j ? m : Expr(0.0);
+    }
+  }
+  return out;
+}
 
 // A rigid body's bias force v x* (I v) (mass m, COM c, inertia Ic about the
 // COM): with p = m (v + w x c) the COM's momentum, the Jacobi identity turns
 // it into [w x (Ic w) + c x (w x p); w x p], fewer products than I v first.
-inline Wrench rigid_bias(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& ic, const Motion& v) {
+inline Wrench rigid_bias(const Expr& m, const Eigen::Vector3d& c, const M3& ic, const Motion& v) {
   const V3 com = constant(c);
-  const V3 g = cross(v.w, Expr(m) * (v.v + cross(v.w, com)));
-  return {cross(v.w, times(constant(ic), v.w)) + cross(com, g), g};
+  const V3 g = cross(v.w, m * (v.v + cross(v.w, com)));
+  return {cross(v.w, times(ic, v.w)) + cross(com, g), g};
 }
 
 // Coordinates turned by E (new = E old): inertia E I E^T... expressed as the

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include <mbrt/rotation.hpp>
+
 namespace mbrt::codegen {
 
 namespace {
@@ -23,5 +25,20 @@ const std::string& Model::body_name(int index) const {
 }
 
 std::string Model::file_name() const { return std::filesystem::path(file).filename().string(); }
+
+double joint_rate_at_start(const Model& model, const Joint& joint) {
+  Eigen::Vector3d w[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}, v[2] = {w[0], w[0]}, r[2] = {w[0], w[0]};
+  const int ends[2] = {joint.body1, joint.body2};
+  for (int i = 0; i < 2; ++i) {
+    if (ends[i] == kGround) continue;
+    const Body& b = model.bodies[static_cast<size_t>(ends[i])];
+    w[i] = mbrt::rotation_matrix(b.orientation) * b.angular_velocity;
+    v[i] = b.velocity;
+    r[i] = b.position;
+  }
+  const Eigen::Vector3d axis = joint.axis.normalized();
+  if (joint.type == JointType::revolute) return axis.dot(w[1] - w[0]);
+  return axis.dot(v[1] - v[0] - w[0].cross(r[1] - r[0]));
+}
 
 }  // namespace mbrt::codegen

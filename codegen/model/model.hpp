@@ -196,6 +196,10 @@ struct Model {
   std::string file_name() const;
 };
 
+// A revolute or prismatic joint's rate at t = 0 from its bodies' velocities
+// in the file: body 2's turn about (slide along) the axis relative to body 1.
+double joint_rate_at_start(const Model& model, const Joint& joint);
+
 // Reads and validates a model file. Throws ModelError naming the file, line,
 // key and what was expected.
 Model load_model(const std::string& path);

@@ -28,6 +28,13 @@ std::vector<Parameter> candidates(const Model& model) {
     vector(b.name + ".velocity", ParameterTarget::velocity, n, b.velocity, kAxes);
     if (!b.particle) vector(b.name + ".angular_velocity", ParameterTarget::angular_velocity, n, b.angular_velocity, kAxes);
   }
+  for (size_t i = 0; i < model.joints.size(); ++i) {
+    const Joint& j = model.joints[i];
+    if (j.type != JointType::revolute && j.type != JointType::prismatic) continue;
+    const int n = static_cast<int>(i);
+    out.push_back({j.name + ".coordinate", ParameterTarget::joint_coordinate, n, 0, 0.0, {}, {}});
+    out.push_back({j.name + ".rate", ParameterTarget::joint_rate, n, 0, joint_rate_at_start(model, j), {}, {}});
+  }
   for (size_t i = 0; i < model.forces.size(); ++i) {
     const Force& f = model.forces[i];
     const int n = static_cast<int>(i);
@@ -46,8 +53,9 @@ std::vector<Parameter> candidates(const Model& model) {
 
 std::string keys_help(const Model& model) {
   return "tunable keys are gravity (when the model has it), BODY.mass, BODY.inertia (a diagonal one), BODY.position, "
-         "BODY.velocity, BODY.angular_velocity, JOINT.spring (of a joint_spring), forces.N (a spring_damper, N its "
-         "index in forces) or one component of them, e.g. " +
+         "BODY.velocity, BODY.angular_velocity, JOINT.coordinate and JOINT.rate (a revolute or prismatic joint, in "
+         "the tree schemes), JOINT.spring (of a joint_spring), forces.N (a spring_damper, N its index in forces) or "
+         "one component of them, e.g. " +
          (model.bodies.empty() ? std::string("body.mass") : model.bodies.front().name + ".position.x");
 }
 

@@ -19,12 +19,14 @@ enum class ParameterTarget {
   spring_stiffness,        // index: force (spring_damper or joint_spring)
   spring_damping,          // index: force
   spring_rest,             // index: force (rest_length or rest)
+  joint_coordinate,        // index: joint (revolute, prismatic); initial state of the tree schemes
+  joint_rate,              // index: joint; initial state of the tree schemes
 };
 
 struct Parameter {
-  std::string name;  // "upper_arm.mass", "gravity.z", "pin.spring.stiffness", "forces.0.rest_length"
+  std::string name;  // "upper_arm.mass", "gravity.z", "pin.spring.stiffness", "forces.0.rest_length", "pin.coordinate"
   ParameterTarget target = ParameterTarget::gravity;
-  int index = -1;      // Model::bodies or Model::forces
+  int index = -1;      // Model::bodies, Model::forces or Model::joints
   int component = 0;   // of a vector or of an inertia's diagonal
   double value = 0.0;  // the model file's value: the default
   SourceLocation where;  // the `tunable:` entry that marked it

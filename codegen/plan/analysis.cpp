@@ -301,27 +301,38 @@ std::vector<ConstraintBlock> constraint_blocks(const Model& model) {
   return blocks;
 }
 
-// Refuses a runtime parameter the scheme folds (docs/parameters.md): the tree
-// schemes' straight-line recursion folds every model value, and only the
-// schemes of the staggered step form M^-1 from runtime masses.
+bool body_state(const Parameter& p) {
+  return p.target == ParameterTarget::position || p.target == ParameterTarget::velocity ||
+         p.target == ParameterTarget::angular_velocity;
+}
+
+// Refuses a runtime parameter the scheme cannot read (docs/parameters.md):
+// each scheme's initial state is in its own coordinates, and only some
+// schemes form M^-1 from runtime masses.
 void check_parameters(const Model& model, const std::vector<Parameter>& params) {
   const mbrt::Scheme scheme = model.solver.scheme;
+  const bool tree = mbrt::joint_space(scheme);
   const bool staggered = scheme == mbrt::Scheme::staggered_pcst || scheme == mbrt::Scheme::baumgarte ||
                          scheme == mbrt::Scheme::blajer;
   for (const Parameter& p : params) {
     const bool mass = p.target == ParameterTarget::mass || p.target == ParameterTarget::inertia;
-    if (!mbrt::joint_space(scheme) && (staggered || !mass)) continue;
+    const bool joint_state = p.target == ParameterTarget::joint_coordinate || p.target == ParameterTarget::joint_rate;
+    std::string why;
+    if (tree && body_state(p)) {
+      why = "the tree schemes start from joint coordinates: mark JOINT.coordinate and JOINT.rate instead";
+    } else if (!tree && joint_state) {
+      why = "joint coordinates are the initial state of the tree schemes (staggered-tree, midpoint-tree, rk4-tree); "
+            "in absolute coordinates mark BODY.position and BODY.velocity instead";
+    } else if (!tree && !staggered && mass) {
+      why = "a tunable mass or inertia needs staggered-pcst, baumgarte, blajer or a tree scheme";
+    }
+    if (why.empty()) continue;
     throw ModelError(p.where, "tunable", "'" + p.entry + "': scheme " + std::string(mbrt::scheme_name(scheme)) +
-                                             " folds " + p.name + " into its step; " +
-                                             (mass ? "a tunable mass or inertia needs staggered-pcst, baumgarte or blajer"
-                                                   : "tunable keys need a scheme in absolute coordinates "
-                                                     "(staggered-pcst, staggered-nps, baumgarte, blajer, ali3p, "
-                                                     "rk4-projected)") +
-                                             " (docs/parameters.md)");
+                                             " cannot take " + p.name + " at run time; " + why + " (docs/parameters.md)");
   }
 }
 
-StepPlan plan_step(const Model& model, const Analysis& a) {
+StepPlan plan_step(const Model& model, const Analysis& a, const std::vector<Parameter>& params) {
   StepPlan p;
   p.scheme = model.solver.scheme;
   const bool pcst = p.scheme == mbrt::Scheme::staggered_pcst;
@@ -334,6 +345,7 @@ StepPlan plan_step(const Model& model, const Analysis& a) {
     // pass over the end-of-step rates pay.
     p.stages = 1;
     for (const Force& f : model.forces) p.stages = f.damping != 0.0 ? 2 : p.stages;
+    for (const Parameter& t : params) p.stages = t.target == ParameterTarget::spring_damping ? 2 : p.stages;
   }
   // Three fixed-point iterations from the last midpoint's accelerations keep
   // the energy of arms, chains and a 30-link tree within 1.5 % over 20 s at
@@ -346,7 +358,10 @@ StepPlan plan_step(const Model& model, const Analysis& a) {
 }  // namespace
 
 mbrt::Scheme default_scheme(const Model& model) {
-  if (!model.tunable.empty()) return mbrt::Scheme::staggered_pcst;  // the tree schemes fold every parameter
+  // A tunable body state is the absolute schemes' initial state.
+  for (const Parameter& p : parameters(model)) {
+    if (body_state(p)) return mbrt::Scheme::staggered_pcst;
+  }
   return plan_tree_frames(model, constraint_blocks(model)).refusal.empty() ? mbrt::Scheme::rk4_tree
                                                                           : mbrt::Scheme::staggered_pcst;
 }
@@ -396,7 +411,9 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
       case ParameterTarget::velocity:
       case ParameterTarget::angular_velocity:
       case ParameterTarget::spring_stiffness:
-      case ParameterTarget::spring_rest: break;
+      case ParameterTarget::spring_rest:
+      case ParameterTarget::joint_coordinate:
+      case ParameterTarget::joint_rate: break;
     }
   }
   // A tunable inertia may lose its isotropy: its gyroscopic torque is a load
@@ -505,7 +522,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     }
   }
 
-  a.step = plan_step(model, a);
+  a.step = plan_step(model, a, params);
   a.planar = plan_planar(model, a);
   a.skipped = skipped_code(model, a);
   return a;

@@ -163,18 +163,10 @@ TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBloc
     f.com = snapped(Eigen::Vector3d(world[k].R.transpose() * (body.position - world[k].o)));
     f.inertia = snapped(Eigen::Matrix3d(f.body_axes * body.inertia * f.body_axes.transpose()));
 
-    // The joint rate from the bodies' velocities at t = 0.
-    const Eigen::Vector3d axis = j.axis.normalized();
-    const Eigen::Vector3d w = body_R * body.angular_velocity;
-    Eigen::Vector3d wp = Eigen::Vector3d::Zero(), vp = Eigen::Vector3d::Zero(), rp = Eigen::Vector3d::Zero();
-    if (tb.parent != kGround) {
-      const Body& pb = model.bodies[static_cast<size_t>(tb.parent)];
-      wp = mbrt::rotation_matrix(pb.orientation) * pb.angular_velocity;
-      vp = pb.velocity;
-      rp = pb.position;
-    }
+    // The joint rate at t = 0, the child's relative to its parent.
     f.armature = j.armature;
-    f.rate0 = f.revolute ? axis.dot(w - wp) : axis.dot(body.velocity - vp - wp.cross(body.position - rp));
+    f.sign = tb.body == j.body2 ? 1.0 : -1.0;
+    f.rate0 = f.sign * joint_rate_at_start(model, j);
     out.frames.push_back(f);
   }
 

@@ -49,6 +49,9 @@ struct TreeFrame {
   Eigen::Vector3d axis_in_parent = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d com_in_body = Eigen::Vector3d::Zero();
   double rate0 = 0.0;  // joint rate at t = 0
+  // The model's joint coordinate (body 2 relative to body 1) is sign * q:
+  // -1 where the tree hangs the joint's body 1 from its body 2.
+  double sign = 1.0;
   double armature = 0.0;
 };
 

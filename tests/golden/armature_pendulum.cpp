@@ -197,9 +197,9 @@ static void half_angles([[maybe_unused]] const Dofs& q, [[maybe_unused]] HalfAng
   ha[body::rod] = mbrt::sin_cos(0.5 * (q[body::rod] + 1.5707963267948966));  // rod
 }
 
-// (q, qd) => (qdd): the articulated-body recursion, this model's nonzero terms only.
+// (s.q, qd) => (qdd): the articulated-body recursion, this model's nonzero terms only.
 // 4 flops: 2 mul, 0 add, 1 fma
-static void joint_accelerations([[maybe_unused]] const Dofs& q, [[maybe_unused]] const HalfAngles& ha, [[maybe_unused]] const Dofs& qd, [[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {
+static void joint_accelerations([[maybe_unused]] const State& s, [[maybe_unused]] const HalfAngles& ha, [[maybe_unused]] const Dofs& qd, [[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {
   const double t0 = ha[body::rod].c * ha[body::rod].c;
   const double t1 = mbrt::mul_add(-ha[body::rod].s, ha[body::rod].s, t0);
   const double t2 = t1 * 8.4085714285714293;
@@ -248,7 +248,7 @@ static State initial_state() noexcept {
   kinematics(s, k);
   Loads l;
   tree_loads(k, s, l);
-  joint_accelerations(s.q, ha, s.qd, k, l, s.qdd);
+  joint_accelerations(s, ha, s.qd, k, l, s.qdd);
   set_multipliers(s);
   return s;
 }

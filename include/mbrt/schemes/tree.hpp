@@ -64,6 +64,7 @@ StepStatus tree_step_end(typename M::State& s, typename M::Workspace& w) noexcep
 }
 
 // The accelerations at joint coordinates s.q and rates w.rates at time s.t
+// (and parameters s.params, where the model has runtime parameters)
 // into s.qdd: one recursion, and the bodies' states first where loads other
 // than gravity need them.
 template <class M>
@@ -74,7 +75,7 @@ void tree_accelerations(typename M::State& s, typename M::Workspace& w) noexcept
     M::kinematics(s, w.k);
     M::tree_loads(w.k, s, w.l);
   }
-  M::joint_accelerations(s.q, w.half_angles, w.rates, w.k, w.l, s.qdd);
+  M::joint_accelerations(s, w.half_angles, w.rates, w.k, w.l, s.qdd);
 }
 
 // (s with accelerations at t) => (s at t + h). Allocates nothing, throws
@@ -99,7 +100,7 @@ StepStatus tree_step(typename M::State& s, typename M::Workspace& w) noexcept {
       M::kinematics(s, w.k);
       M::tree_loads(w.k, s, w.l);
     }
-    M::joint_accelerations(s.q, w.half_angles, w.rates, w.k, w.l, s.qdd);
+    M::joint_accelerations(s, w.half_angles, w.rates, w.k, w.l, s.qdd);
   }
   for (std::size_t i = 0; i < s.q.size(); ++i) s.qd[i] += (0.5 * h) * s.qdd[i];
   M::body_states(s.q, w.half_angles, s.qd, s);
