@@ -25,6 +25,7 @@
 #include <mbrt/rt/periodic_clock.hpp>
 #include <mbrt/rt/program_options.hpp>
 #include <mbrt/rt/realtime_setup.hpp>
+#include <mbrt/parameter_settings.hpp>
 
 #include MBRT_MODEL_CAN_HEADER
 #include MBRT_MODEL_LCM_HEADER
@@ -56,6 +57,18 @@ HilOptions parse(int argc, char** argv) {
 }
 
 std::int64_t seconds_to_ns(double s) { return std::llround(s * 1e9); }
+
+// The loop's first state, with the --set parameters (docs/parameters.md);
+// "" or why it cannot start.
+std::string start_state(const std::vector<std::string>& set, model::State& s) {
+#ifdef MBRT_MODEL_PARAMETERS
+  return mbrt::start_with_settings(model::kParameterInfo, model::kDefaultParameters, set, model::initial_state,
+                                   model::constraint_violation, s);
+#else
+  s = model::initial_state();
+  return set.empty() ? "" : "the model has no tunable keys (docs/parameters.md)";
+#endif
+}
 
 // The loop's data, all allocated before the first cycle.
 struct Loop {
@@ -171,6 +184,10 @@ int run(const HilOptions& opt) {
   // On the heap: a large model's workspace would not fit a small thread stack.
   const auto loop_memory = std::make_unique<Loop>(GateTimes{seconds_to_ns(opt.command_timeout_s), seconds_to_ns(opt.max_command_age_s)});
   Loop& loop = *loop_memory;
+  if (const std::string why = start_state(opt.set, loop.state); !why.empty()) {
+    std::fprintf(stderr, "hil: --set: %s\n", why.c_str());
+    return 2;
+  }
   HilRunStats& stats = loop.stats;
   stats.model = model::kName;
   const bool can = !opt.link.can_bus.empty();

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "mbrt/parameter_settings.hpp"
+
 namespace mbrt::rt {
 
 // CLI11's own checks would take "nan" and "inf", and word their errors by the
@@ -41,6 +43,16 @@ void add_link_options(CLI::App& app, LinkOptions& link) {
 
 }  // namespace
 
+CLI::Validator setting_check() {
+  return CLI::Validator(
+      [](const std::string& text) {
+        std::string key;
+        double value = 0.0;
+        return parse_setting(text, key, value);
+      },
+      "KEY=VALUE");
+}
+
 void add_hil_options(CLI::App& app, HilOptions& o) {
   add_link_options(app, o.link);
   app.add_option("--command-timeout", o.command_timeout_s, "a command older than this is stale, s")
@@ -51,6 +63,7 @@ void add_hil_options(CLI::App& app, HilOptions& o) {
   app.add_option("--fifo", o.realtime.fifo_priority, "SCHED_FIFO priority, 1 to 99 (0: keep the default scheduler)")
       ->check(number_check("a whole number in [0, 99]", [](double x) { return x >= 0.0 && x <= 99.0 && x == std::floor(x); }));
   app.add_option("--cpu", o.realtime.cpu, "pin the loop to this CPU")->check(kIndex);
+  app.add_option("--set", o.set, "set a tunable parameter before the run (repeatable)")->take_all()->check(setting_check());
 }
 
 void add_stub_options(CLI::App& app, StubOptions& o) {

@@ -186,15 +186,7 @@ int run(int argc, char** argv) {
   std::vector<std::string> set;  // --set KEY=VALUE: runtime parameters (docs/parameters.md), checked against the model
   sim_cmd->add_option("--set", set, "set a tunable parameter before the run (repeatable)")
       ->take_all()
-      ->check(CLI::Validator(
-          [](const std::string& pair) {
-            const size_t eq = pair.find('=');
-            if (eq == std::string::npos || eq == 0) return "expected KEY=VALUE, got '" + pair + "'";
-            return number_check("a finite number", [](double) { return true; })(pair.substr(eq + 1)).empty()
-                       ? std::string()
-                       : "expected KEY=VALUE with a finite number, got '" + pair + "'";
-          },
-          "KEY=VALUE"));
+      ->check(mbrt::rt::setting_check());
   for (CLI::App* cmd : {sim_cmd, hil_cmd, stub_cmd, build_cmd}) cmd->add_flag("--verbose", sim.verbose, "show the compiler's command");
 
   const auto add_program_options = [&program_options](CLI::App& cmd, const auto& add) {
@@ -258,11 +250,13 @@ int run(int argc, char** argv) {
   if (hil_cmd->parsed()) {
     if (const std::string why = mbrt::rt::check_rate(hil.link.rate_hz, g.model.solver.step); !why.empty()) usage_error(cmd, why);
   }
+  // --set keys checked against the model before compiling; hil's go to the
+  // loop with its other options.
   const std::vector<std::string> tunable = mbrt::codegen::tunable_names(g.model);
-  for (const std::string& pair : set) {
+  for (const std::string& pair : hil_cmd->parsed() ? hil.set : set) {
     const std::string key = pair.substr(0, pair.find('='));
     if (std::find(tunable.begin(), tunable.end(), key) != tunable.end()) {
-      sim.driver_args.insert(sim.driver_args.end(), {"--set", pair});
+      if (sim_cmd->parsed()) sim.driver_args.insert(sim.driver_args.end(), {"--set", pair});
       continue;
     }
     std::string names;

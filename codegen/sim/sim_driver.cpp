@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include <mbrt/parameter_settings.hpp>
 #include <nlohmann/json.hpp>
 
 #include MBRT_MODEL_HEADER
@@ -28,26 +29,12 @@ struct Options {
   long every = 1;
   bool velocities = false;
   bool reactions = false;
-  std::vector<std::pair<std::string, double>> set;  // --set KEY=VALUE, in order
+  std::vector<std::string> set;  // --set KEY=VALUE, in order
 };
 
 [[noreturn]] void usage(const char* why) {
   std::fprintf(stderr, "sim driver: %s\nusage: sim [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--set KEY=VALUE]...\n", why);
   std::exit(2);
-}
-
-// "KEY=VALUE" with a finite number, or exit 2.
-std::pair<std::string, double> parse_set(const std::string& arg) {
-  const size_t eq = arg.find('=');
-  if (eq == std::string::npos || eq == 0) usage(("--set expects KEY=VALUE, got '" + arg + "'").c_str());
-  const std::string text = arg.substr(eq + 1);
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
-    usage(("--set " + arg + ": '" + text + "' is not a finite number").c_str());
-  }
-  return {arg.substr(0, eq), v};
 }
 
 Options parse(int argc, char** argv) {
@@ -63,7 +50,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--every") o.every = std::atol(value());
     else if (a == "--velocities") o.velocities = true;
     else if (a == "--reactions") o.reactions = true;
-    else if (a == "--set" || a.rfind("--set=", 0) == 0) o.set.push_back(parse_set(a == "--set" ? value() : argv[i] + 6));
+    else if (a == "--set" || a.rfind("--set=", 0) == 0) o.set.push_back(a == "--set" ? value() : argv[i] + 6);
     else usage(("unknown option " + a).c_str());
   }
   if (!(o.t_end >= 0.0)) usage("--t-end must be >= 0");
@@ -127,27 +114,13 @@ void write_row(std::FILE* f, const model::State& s, const Options& o) {
 // exit 2 for a key the model does not have or a state off the joints.
 model::State initial_state(const Options& o) {
 #ifdef MBRT_MODEL_PARAMETERS
-  model::Parameters p = model::kDefaultParameters;
-  for (const auto& [key, value] : o.set) {
-    if (model::set_parameter(p, key, value)) continue;
-    std::string names;
-    for (const mbrt::ParameterInfo& info : model::kParameterInfo) names += std::string(names.empty() ? "" : ", ") + info.name;
-    usage(("--set " + key + ": no tunable parameter of that name; the model's are " + names).c_str());
-  }
-  const model::State s = model::initial_state(p);
-  const mbrt::ConstraintViolation v = model::constraint_violation(s);
-  constexpr double kTolerance = 1e-8;  // as the generator's check of the model file's initial state
-  if (!o.set.empty() && (v.position > kTolerance || v.velocity > kTolerance)) {
-    char why[256];
-    std::snprintf(why, sizeof why,
-                  "the --set initial state violates the joints (position %.3g, velocity %.3g, tolerance %.0e): "
-                  "set positions and velocities that satisfy them",
-                  v.position, v.velocity, kTolerance);
-    usage(why);
-  }
+  model::State s;
+  const std::string why = mbrt::start_with_settings(model::kParameterInfo, model::kDefaultParameters, o.set,
+                                                    model::initial_state, model::constraint_violation, s);
+  if (!why.empty()) usage(("--set: " + why).c_str());
   return s;
 #else
-  if (!o.set.empty()) usage(("--set " + o.set.front().first + ": the model has no tunable keys (docs/parameters.md)").c_str());
+  if (!o.set.empty()) usage(("--set " + o.set.front() + ": the model has no tunable keys (docs/parameters.md)").c_str());
   return model::initial_state();
 #endif
 }

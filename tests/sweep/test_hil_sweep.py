@@ -20,7 +20,7 @@ import shutil
 import subprocess
 import sys
 
-mbrt, model, work, cache = sys.argv[1:5]
+mbrt, model, tunable_model, work, cache = sys.argv[1:6]
 namespace = pathlib.Path(__file__).resolve().parents[2] / "scripts" / "in-private-network"
 if subprocess.run([str(namespace), "true"]).returncode == 77:
     sys.exit(77)
@@ -58,5 +58,19 @@ check(dropped["faults_injected"] - 3 <= dropped["commands_missing"] <= dropped["
       f"missing {dropped['commands_missing']:.0f} == dropped {dropped['faults_injected']:.0f}")
 check(rows["1.5"]["status"] == "refused" and "--drop" in rows["1.5"]["message"],
       f"a probability of 1.5 is refused, naming the option ({rows['1.5']['status']}: {rows['1.5']['message']})")
+# Over the plant: the upper link's mass set in the loop.
+plant = pathlib.Path(work) / "plant"
+r = subprocess.run([mbrt, "sweep", tunable_model, "--hil", "--grid", "upper.mass=1,30", "--duration", "2.4",
+                    "--hil-args", "--command-timeout 0.5 --max-command-age 0.5", "--stub-args", f"--kp 200,60,10 --kd 20,6,1 --amplitude {AMPLITUDE}",
+                    "--workers", "1", "--out", str(plant)], capture_output=True, text=True)
+check(r.returncode == 0, f"the plant sweep finished (exit {r.returncode}: {r.stderr.strip()[-400:]})")
+with open(plant / "results.csv", newline="") as f:
+    rows = {float(x["upper.mass"]): x for x in csv.DictReader(f)}
+check(all(x["status"] == "ok" for x in rows.values()), f"both masses ran ({[x['status'] for x in rows.values()]})")
+light, heavy = (float(rows[m]["tracking_rms"]) for m in (1.0, 30.0))
+check(heavy > 1.5 * light, f"the heavy arm tracks worse: RMS {heavy:.3g} against {light:.3g} rad")
+r = subprocess.run([mbrt, "sweep", tunable_model, "--hil", "--grid", "upper.colour=1", "--duration", "0.1",
+                    "--out", str(pathlib.Path(work) / "unknown")], capture_output=True, text=True)
+check(r.returncode == 2 and "upper.colour" in r.stderr, f"an unknown key stops the sweep, named (exit {r.returncode}: {r.stderr.strip()[-300:]})")
 print(f"{failures} failures")
 sys.exit(1 if failures else 0)

@@ -3,7 +3,9 @@ compiled `hil` loop and `stub` controller run against each other over LCM on
 loopback, in a private network namespace of their own (scripts/
 in-private-network), so samples running at once never hear each other. The
 sample's parameters are the programs' options: `stub.drop=0.1` gives the stub
-`--drop 0.1`, `hil.command-timeout=0.02` the loop `--command-timeout 0.02`.
+`--drop 0.1`, `hil.command-timeout=0.02` the loop `--command-timeout 0.02`;
+any other key is the model's runtime parameter, which the loop takes as
+`--set KEY=VALUE` (`upper.mass=2` gives `--set upper.mass=2`).
 The stub's fault seed is the sample's own, derived from the sweep's seed.
 
 Inside the namespace, `python3 -m mbrt.sweep.hil_sample` starts the loop,
@@ -39,9 +41,14 @@ REPORT_FIELDS = {  # column: (program, field in its report)
 
 
 def program_options(params, program):
-    """`--OPTION VALUE` for the parameters `program.OPTION`."""
+    """`--OPTION VALUE` for the parameters `program.OPTION`, and for the loop
+    `--set KEY=VALUE` for the model's parameters (keys of neither program)."""
     prefix = program + "."
-    return [a for key, v in params.items() if key.startswith(prefix) for a in ("--" + key[len(prefix):], format_value(v))]
+    options = [a for key, v in params.items() if key.startswith(prefix) for a in ("--" + key[len(prefix):], format_value(v))]
+    if program == "hil":
+        options += [a for key, v in params.items() if not key.startswith(("hil.", "stub."))
+                    for a in ("--set", f"{key}={format_value(v)}")]
+    return options
 
 
 def _report_value(report, field):

@@ -35,6 +35,7 @@ struct HilOptions {
   double max_command_age_s = 0.05;
   long publish_every = 1;
   RealtimeOptions realtime;
+  std::vector<std::string> set;  // --set KEY=VALUE: runtime parameters (docs/parameters.md)
 };
 
 // Probabilities of each fault per command the stub sends.
@@ -58,6 +59,9 @@ struct StubOptions {
 // A check that a value parses completely as a finite number for which
 // ok(x) holds; its message otherwise: "expected <what>, got '<text>'".
 CLI::Validator number_check(const std::string& what, std::function<bool(double)> ok);
+
+// --set's check: KEY=VALUE with a finite number (the key is the model's to check).
+CLI::Validator setting_check();
 
 void add_hil_options(CLI::App& app, HilOptions& options);
 void add_stub_options(CLI::App& app, StubOptions& options);
