@@ -302,23 +302,16 @@ std::vector<ConstraintBlock> constraint_blocks(const Model& model) {
 }
 
 // Refuses a runtime parameter the scheme folds (docs/parameters.md): the tree
-// schemes' straight-line recursion folds every model value, and only the
-// schemes of the staggered step form M^-1 from runtime masses.
+// schemes' straight-line recursion folds every model value; the schemes in
+// absolute coordinates form M and M^-1 from runtime masses.
 void check_parameters(const Model& model, const std::vector<Parameter>& params) {
   const mbrt::Scheme scheme = model.solver.scheme;
-  const bool staggered = scheme == mbrt::Scheme::staggered_pcst || scheme == mbrt::Scheme::baumgarte ||
-                         scheme == mbrt::Scheme::blajer;
-  for (const Parameter& p : params) {
-    const bool mass = p.target == ParameterTarget::mass || p.target == ParameterTarget::inertia;
-    if (!mbrt::joint_space(scheme) && (staggered || !mass)) continue;
-    throw ModelError(p.where, "tunable", "'" + p.entry + "': scheme " + std::string(mbrt::scheme_name(scheme)) +
-                                             " folds " + p.name + " into its step; " +
-                                             (mass ? "a tunable mass or inertia needs staggered-pcst, baumgarte or blajer"
-                                                   : "tunable keys need a scheme in absolute coordinates "
-                                                     "(staggered-pcst, staggered-nps, baumgarte, blajer, ali3p, "
-                                                     "rk4-projected)") +
-                                             " (docs/parameters.md)");
-  }
+  if (!mbrt::joint_space(scheme) || params.empty()) return;
+  const Parameter& p = params.front();
+  throw ModelError(p.where, "tunable",
+                   "'" + p.entry + "': scheme " + std::string(mbrt::scheme_name(scheme)) + " folds " + p.name +
+                       " into its step; tunable keys need a scheme in absolute coordinates (staggered-pcst, "
+                       "staggered-nps, baumgarte, blajer, ali3p, rk4-projected) (docs/parameters.md)");
 }
 
 StepPlan plan_step(const Model& model, const Analysis& a) {
