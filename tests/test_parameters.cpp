@@ -2,7 +2,8 @@
 // closed-form period of the new value, the same trajectory as the model
 // generated with that value folded, and neither setting nor stepping
 // allocates; bad `tunable:` entries and keys a scheme folds are errors naming
-// file, line and key.
+// file, line and key. Masses in staggered-nps, ali3p and rk4-projected:
+// test_parameters_mass.cpp.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -147,7 +148,12 @@ TEST_CASE("tunable keys: names, and errors naming file, line and key") {
   CHECK(what_of(kPendulum + "tunable: [bob.mass, bob]\n").find("marked tunable twice") != std::string::npos);
   CHECK(what_of(kPendulum + "tunable: [gravity]\n", mbrt::Scheme::rk4_tree).find("scheme rk4-tree folds gravity.x") !=
         std::string::npos);
-  CHECK(what_of(kPendulum + "tunable: [bob.mass]\n", mbrt::Scheme::ali3p).find("needs staggered-pcst") != std::string::npos);
+  CHECK(what_of(kPendulum + "tunable: [bob.mass]\n", mbrt::Scheme::staggered_tree)
+            .find("scheme staggered-tree folds bob.mass") != std::string::npos);
+  // Every scheme in absolute coordinates reads masses from the parameters (test_parameters_mass.cpp).
+  for (const mbrt::Scheme scheme : {mbrt::Scheme::staggered_nps, mbrt::Scheme::ali3p, mbrt::Scheme::rk4_projected}) {
+    CHECK(what_of(kPendulum + "tunable: [bob.mass]\n", scheme) == "(no error)");
+  }
   CHECK(what_of(kPendulum + "tunable: [gravity]\n", mbrt::Scheme::ali3p) == "(no error)");
   CHECK(what_of(kPendulum + "tunable: [bob.mass]\n", mbrt::Scheme::blajer) == "(no error)");
   try {
