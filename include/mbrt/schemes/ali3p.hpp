@@ -13,7 +13,9 @@
 //   kernels   kinematics, velocities_of, generalized_velocities, set_velocities,
 //             accelerations_of, set_accelerations, applied_loads, constraint_rows,
 //             factorize(c, shift), stacked_phi, stacked_phi_t, stacked_quad,
-//             newmark_update, newton_correction, constraint_minus_applied, project.
+//             newmark_update, newton_correction, constraint_minus_applied, project;
+//             the kernels that form M^-1 with the state first where masses are
+//             runtime parameters (below).
 // Workspace holds last_good (the state at t), k, c and l.
 #pragma once
 

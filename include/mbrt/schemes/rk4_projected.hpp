@@ -12,7 +12,8 @@
 // Integration", section IV.4).
 //
 // M is a generated model (struct Model in the model's source, spatial
-// coordinates). It provides blajer's kernels (include/mbrt/schemes/staggered.hpp)
+// coordinates). It provides blajer's kernels (include/mbrt/schemes/staggered.hpp;
+// factorize takes the state where masses are runtime parameters)
 // and the constants kStep, kCorrections and kInputs (the model has inputs,
 // which may change between steps).
 // Workspace holds last_good (the state at t), k, c, l, sum (the stages'
