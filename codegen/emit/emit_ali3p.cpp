@@ -84,8 +84,9 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
 
   const bool weighted = ali3p_weighted();
   o << "// (c, l, lambda) => (M^-1 g): g = B^T lambda - F per body.\n"
-    << "static BodyVectors constraint_minus_applied(const ConstraintSystem& c, const Loads& l, const Rows& lambda) noexcept {\n"
-    << "  BodyVectors x = free_accelerations(l);\n"
+    << "static BodyVectors constraint_minus_applied(" << mass_parameter()
+    << "const ConstraintSystem& c, const Loads& l, const Rows& lambda) noexcept {\n"
+    << "  BodyVectors x = free_accelerations(" << mass_argument() << "l);\n"
     << "  for (mbrt::Vec6& v : x) v = -v;\n"
     << "  subtract_constraint_forces(c, lambda, -1.0, x);\n"
     << "  return x;\n}\n\n";
@@ -93,10 +94,10 @@ void Emitter::ali3p_stages(std::ostringstream& o) const {
     << "//   (1 - dM) M a + dM M a_n + (1 - dF) g + dF g_n = 0,  g = B^T lambda - F,\n"
     << "// lambda = lambda* + alpha phi, with the tangent M + c B^T alpha B inverted as\n"
     << "// M^-1 - M^-1 B^T (S + 1/(c alpha))^-1 B M^-1 (c is in kTangentShift).\n"
-    << "static void newton_correction(const ConstraintSystem& c, const Loads& l, const Rows& lambda,"
+    << "static void newton_correction(" << mass_parameter() << "const ConstraintSystem& c, const Loads& l, const Rows& lambda,"
     << (weighted ? " const BodyVectors& a_n,\n                       const BodyVectors& g_n," : "")
     << " BodyVectors& a) noexcept {\n"
-    << "  BodyVectors x = constraint_minus_applied(c, l, lambda);\n";
+    << "  BodyVectors x = constraint_minus_applied(" << mass_argument() << "c, l, lambda);\n";
   if (weighted) {
     o << "  for (int b = 0; b < kBodies; ++b) {\n"
       << "    x[b] = a[b] + (kDeltaM * a_n[b] + (1.0 - kDeltaF) * x[b] + kDeltaF * g_n[b]) / (1.0 - kDeltaM);\n"

@@ -787,7 +787,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
   const bool nps = scheme_kind() == Scheme::staggered_nps;
   o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n";
   if (nps) {
-    o << "  TreeSystem t;\n  factorize_tree(k, c, t);\n" << (nps_cuts() ? "  factorize_cut(c, t);\n" : "");
+    o << "  TreeSystem t;\n  factorize_tree(" << mass_argument() << "k, c, t);\n" << (nps_cuts() ? "  factorize_cut(c, t);\n" : "");
   } else {
     o << "  factorize(" << mass_argument() << (ali3p ? "c, Rows::Constant(kRegularization));\n" : "c);\n");
   }

@@ -64,12 +64,12 @@ bool Emitter::free_leaf(const TreeBody& tb) const { return tb.joint < 0 && tb.le
 
 // IA x; a leaf's articulated inertia is its mass matrix, which is sparse.
 std::string Emitter::ia_times(const TreeBody& tb, const std::string& x) const {
-  if (tb.leaf) return "mbrt::mass_times(" + mass_of(tb.body) + ", " + x + ")";
+  if (tb.leaf) return "mbrt::mass_times(" + tree_mass(tb.body) + ", " + x + ")";
   return "t.IA_" + body(tb.body).name + " * " + x;
 }
 
 std::string Emitter::ia_matrix(const TreeBody& tb) const {
-  return tb.leaf ? "mbrt::mass_matrix(" + mass_of(tb.body) + ")" : "t.IA_" + body(tb.body).name;
+  return tb.leaf ? "mbrt::mass_matrix(" + tree_mass(tb.body) + ")" : "t.IA_" + body(tb.body).name;
 }
 
 void Emitter::nps_workspace(std::ostringstream& o) const {
@@ -95,6 +95,7 @@ void Emitter::nps_workspace(std::ostringstream& o) const {
     }
   }
   if (nps_cuts()) o << "  Eigen::Matrix<double, kCutRows, kCutRows> S_cut;  // Cholesky factor\n";
+  if (a_.tunable_masses) o << "  Parameters params;  // the runtime masses it was formed with (factorize_tree)\n";
   o << "};\n\n";
 }
 
@@ -102,10 +103,12 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
   const TreePlan& tree = a_.tree;
   o << "// (k, c) => (t): the tree elimination, leaves first. IA of a body is its\n"
     << "// mass plus X^T (IA - W W^T) X of each child; false if a pivot is not positive.\n"
-    << "static bool factorize_tree([[maybe_unused]] const Kinematics& k, [[maybe_unused]] const ConstraintSystem& c,\n                           [[maybe_unused]] TreeSystem& t) noexcept {\n"
+    << "static bool factorize_tree(" << mass_parameter()
+    << "[[maybe_unused]] const Kinematics& k, [[maybe_unused]] const ConstraintSystem& c,\n                           [[maybe_unused]] TreeSystem& t) noexcept {\n"
     << "  bool positive = true;\n";
+  if (a_.tunable_masses) o << "  t.params = s.params;\n";
   for (const TreeBody& tb : tree.order) {
-    if (!tb.leaf) o << "  t.IA_" << body(tb.body).name << " = mbrt::mass_matrix(" << mass_of(tb.body) << ");\n";
+    if (!tb.leaf) o << "  t.IA_" << body(tb.body).name << " = mbrt::mass_matrix(" << tree_mass(tb.body) << ");\n";
   }
   for (size_t n = tree.order.size(); n-- > 0;) {
     const TreeBody& tb = tree.order[n];
@@ -122,7 +125,7 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
     }
     if (tb.joint >= 0 && tb.dofs > 0) {
       o << "    const " << block_type(6, tb.dofs) << " U = "
-        << (tb.leaf ? "mbrt::mass_times_columns(" + mass_of(tb.body) + ", t.H_" + i + ")" : "t.IA_" + i + " * t.H_" + i)
+        << (tb.leaf ? "mbrt::mass_times_columns(" + tree_mass(tb.body) + ", t.H_" + i + ")" : "t.IA_" + i + " * t.H_" + i)
         << ";\n"
         << "    t.L_" << i << " = t.H_" << i << ".transpose() * U;\n";
     } else if (tb.joint < 0) {  // a free body with children: H = I
@@ -147,7 +150,7 @@ void Emitter::nps_factorize(std::ostringstream& o) const {
     }
     if (tb.joint >= 0) {
       const std::string J = rows_of(tb.joint) + "." + (tb.child_is_body2 ? "J2" : "J1");
-      o << "    t.Q_" << i << " = mbrt::inverse_mass_times_transpose(" << mass_of(tb.body) << ", " << J << ");\n"
+      o << "    t.Q_" << i << " = mbrt::inverse_mass_times_transpose(" << tree_mass(tb.body) << ", " << J << ");\n"
         << "    t.G_" << i << " = " << J << " * t.Q_" << i << ";\n"
         << "    positive = mbrt::cholesky_in_place(t.G_" << i << ") && positive;\n"
         << "    mbrt::solve_right_lower_transposed(t.G_" << i << ", t.Q_" << i << ");\n";
@@ -213,7 +216,7 @@ void Emitter::nps_tree_solve(std::ostringstream& o, bool with_targets) const {
     const std::string i = body(tb.body).name;
     const std::string particular = with_targets ? "part[body::" + i + "]" : "";
     if (free_leaf(tb)) {
-      o << "  acc[body::" << i << "] = mbrt::inverse_mass_times(" << mass_of(tb.body) << ", force[body::" << i << "]);  // "
+      o << "  acc[body::" << i << "] = mbrt::inverse_mass_times(" << tree_mass(tb.body) << ", force[body::" << i << "]);  // "
         << body(tb.body).name << ", free\n";
       continue;
     }
@@ -319,7 +322,7 @@ void Emitter::nps_stages(std::ostringstream& o) const {
     << "                    BodyVectors& u) noexcept {\n"
     << "  BodyVectors momentum;\n";
   for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
-    o << "  momentum" << at(i) << " = mbrt::mass_times(" << mass_of(i) << ", u_half" << at(i)
+    o << "  momentum" << at(i) << " = mbrt::mass_times(" << tree_mass(i) << ", u_half" << at(i)
       << ") + (0.5 * h) * mbrt::as_vector(l.w" << at(i) << ");\n";
   }
   o << "  tree_response(t, momentum, u);\n";

@@ -149,7 +149,10 @@ class Emitter {
   std::string acceleration_of(int i) const {
     return (plan(i).rigid ? "s.rigid_acceleration" : "s.particle_acceleration") + slot_of(i);
   }
-  std::string mass_of(int i) const { return body(i).name + "_mass" + (plan(i).tunable_mass ? "(s.params)" : ""); }
+  // Body i's mass (constant, or read from the parameters p where tunable).
+  std::string mass_of(int i, const std::string& p = "s.params") const {
+    return body(i).name + "_mass" + (plan(i).tunable_mass ? "(" + p + ")" : "");
+  }
   // The kernels that form M^-1 take the state where masses are runtime
   // parameters (include/mbrt/schemes/staggered.hpp): parameter and argument.
   std::string mass_parameter() const { return a_.tunable_masses ? "const State& s, " : ""; }
@@ -278,6 +281,9 @@ class Emitter {
 
   // emit_nps.cpp: the tree elimination (a_.tree) and the cut rows.
   bool nps_cuts() const { return a_.tree.cut_rows > 0; }
+  // Body i's mass in the tree kernels: TreeSystem keeps the step's parameters
+  // where masses are tunable (factorize_tree copies them from the state).
+  std::string tree_mass(int i) const { return mass_of(i, "t.params"); }
   std::vector<std::string> null_space_columns(const TreeBody& tb) const;
   bool carries_parent_axes(const TreeBody& tb) const;
   std::string h_transpose_times(const TreeBody& tb, const std::string& x) const;

@@ -307,15 +307,11 @@ bool body_state(const Parameter& p) {
 }
 
 // Refuses a runtime parameter the scheme cannot read (docs/parameters.md):
-// each scheme's initial state is in its own coordinates, and only some
-// schemes form M^-1 from runtime masses.
+// each scheme's initial state is in its own coordinates.
 void check_parameters(const Model& model, const std::vector<Parameter>& params) {
   const mbrt::Scheme scheme = model.solver.scheme;
   const bool tree = mbrt::joint_space(scheme);
-  const bool staggered = scheme == mbrt::Scheme::staggered_pcst || scheme == mbrt::Scheme::baumgarte ||
-                         scheme == mbrt::Scheme::blajer;
   for (const Parameter& p : params) {
-    const bool mass = p.target == ParameterTarget::mass || p.target == ParameterTarget::inertia;
     const bool joint_state = p.target == ParameterTarget::joint_coordinate || p.target == ParameterTarget::joint_rate;
     std::string why;
     if (tree && body_state(p)) {
@@ -323,8 +319,6 @@ void check_parameters(const Model& model, const std::vector<Parameter>& params) 
     } else if (!tree && joint_state) {
       why = "joint coordinates are the initial state of the tree schemes (staggered-tree, midpoint-tree, rk4-tree); "
             "in absolute coordinates mark BODY.position and BODY.velocity instead";
-    } else if (!tree && !staggered && mass) {
-      why = "a tunable mass or inertia needs staggered-pcst, baumgarte, blajer or a tree scheme";
     }
     if (why.empty()) continue;
     throw ModelError(p.where, "tunable", "'" + p.entry + "': scheme " + std::string(mbrt::scheme_name(scheme)) +

@@ -13,15 +13,52 @@
 //   kernels   kinematics, velocities_of, generalized_velocities, set_velocities,
 //             accelerations_of, set_accelerations, applied_loads, constraint_rows,
 //             factorize(c, shift), stacked_phi, stacked_phi_t, stacked_quad,
-//             newmark_update, newton_correction, constraint_minus_applied, project.
+//             newmark_update, newton_correction, constraint_minus_applied, project;
+//             the kernels that form M^-1 with the state first where masses are
+//             runtime parameters (below).
 // Workspace holds last_good (the state at t), k, c and l.
 #pragma once
 
+#include <type_traits>
+#include <utility>
+
 #include "mbrt/scheme.hpp"
+#include "mbrt/schemes/staggered.hpp"
 #include "mbrt/schemes/state_checks.hpp"
 #include "mbrt/step_status.hpp"
 
 namespace mbrt::schemes {
+
+// The kernels that form M^-1 (factorize, newton_correction,
+// constraint_minus_applied, free_accelerations) take the state where masses
+// are runtime parameters (docs/parameters.md); told apart by factorize's form.
+template <class M, class = void>
+struct ali3p_reads_state : std::false_type {};
+template <class M>
+struct ali3p_reads_state<M, std::void_t<decltype(M::factorize(std::declval<const typename M::State&>(),
+                                                              std::declval<typename M::ConstraintSystem&>(),
+                                                              std::declval<const typename M::Rows&>()))>>
+    : std::true_type {};
+
+template <class M>
+bool ali3p_factorize(const typename M::State& s, typename M::ConstraintSystem& c, const typename M::Rows& shift) noexcept {
+  if constexpr (ali3p_reads_state<M>::value) return M::factorize(s, c, shift);
+  else return M::factorize(c, shift);
+}
+
+template <class M>
+typename M::BodyVectors ali3p_constraint_minus_applied(const typename M::State& s, const typename M::ConstraintSystem& c,
+                                                       const typename M::Loads& l, const typename M::Rows& lambda) noexcept {
+  if constexpr (ali3p_reads_state<M>::value) return M::constraint_minus_applied(s, c, l, lambda);
+  else return M::constraint_minus_applied(c, l, lambda);
+}
+
+// newton_correction(c, l, lambda, [a_n, g_n,] a), with the state first where it reads it.
+template <class M, class... Args>
+void ali3p_newton_correction(const typename M::State& s, Args&&... args) noexcept {
+  if constexpr (ali3p_reads_state<M>::value) M::newton_correction(s, std::forward<Args>(args)...);
+  else M::newton_correction(std::forward<Args>(args)...);
+}
 
 // (a, s, w.c factorized with kProjectionShift) => (lambda): the multipliers
 // whose forces give the accelerations a by Newton's law at the step's end,
@@ -36,7 +73,7 @@ typename M::Rows newton_multipliers(const typename M::BodyVectors& a, typename M
                                     typename M::Workspace& w) noexcept {
   using Rows = typename M::Rows;
   M::applied_loads(w.k, s, w.l);
-  typename M::BodyVectors residual = M::free_accelerations(w.l);
+  typename M::BodyVectors residual = free_accelerations<M>(s, w.l);
   for (std::size_t b = 0; b < residual.size(); ++b) residual[b] -= a[b];
   Rows lambda = M::jacobian_times(w.c, residual);
   M::solve(w.c, lambda);
@@ -69,11 +106,11 @@ StepStatus ali3p_step(typename M::State& s, typename M::Workspace& w) noexcept {
     const Rows phi = M::stacked_phi(w.c);
     if (i > 0) lambda_star += M::kAlpha.cwiseProduct(phi);
     M::applied_loads(w.k, s, w.l);
-    positive = M::factorize(w.c, M::kTangentShift) && positive;
+    positive = ali3p_factorize<M>(s, w.c, M::kTangentShift) && positive;
     if constexpr (M::kWeighted) {
-      M::newton_correction(w.c, w.l, lambda_star + M::kAlpha.cwiseProduct(phi), a_n, n.ali3p_force, a);
+      ali3p_newton_correction<M>(s, w.c, w.l, lambda_star + M::kAlpha.cwiseProduct(phi), a_n, n.ali3p_force, a);
     } else {
-      M::newton_correction(w.c, w.l, lambda_star + M::kAlpha.cwiseProduct(phi), a);
+      ali3p_newton_correction<M>(s, w.c, w.l, lambda_star + M::kAlpha.cwiseProduct(phi), a);
     }
   }
 
@@ -86,12 +123,12 @@ StepStatus ali3p_step(typename M::State& s, typename M::Workspace& w) noexcept {
   s.ali3p_lambda_star = s.lambda;
   if constexpr (M::kWeighted) {
     M::applied_loads(w.k, s, w.l);
-    s.ali3p_force = M::constraint_minus_applied(w.c, w.l, s.lambda);
+    s.ali3p_force = ali3p_constraint_minus_applied<M>(s, w.c, w.l, s.lambda);
   }
 
   // Velocity projection, then the acceleration projection with the
   // acceleration terms at the projected velocities.
-  positive = M::factorize(w.c, M::kProjectionShift) && positive;
+  positive = ali3p_factorize<M>(s, w.c, M::kProjectionShift) && positive;
   if constexpr (M::kRheonomic) {
     M::project(w.c, M::stacked_phi_t(w.c), u);
   } else {

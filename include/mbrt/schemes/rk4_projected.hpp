@@ -12,7 +12,8 @@
 // Integration", section IV.4).
 //
 // M is a generated model (struct Model in the model's source, spatial
-// coordinates). It provides blajer's kernels (include/mbrt/schemes/staggered.hpp)
+// coordinates). It provides blajer's kernels (include/mbrt/schemes/staggered.hpp;
+// factorize takes the state where masses are runtime parameters)
 // and the constants kStep, kCorrections and kInputs (the model has inputs,
 // which may change between steps).
 // Workspace holds last_good (the state at t), k, c, l, sum (the stages'
@@ -30,7 +31,7 @@ template <class M>
 bool rk4_projected_evaluate(typename M::State& s, typename M::Workspace& w) noexcept {
   M::kinematics(s, w.k);
   M::constraint_rows(w.k, s.t, w.c);
-  const bool positive = M::factorize(w.c);
+  const bool positive = factorize_system<M>(s, w.c);
   M::applied_loads(w.k, s, w.l);
   M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);
   return positive;
@@ -117,12 +118,12 @@ StepStatus rk4_projected_step(typename M::State& s, typename M::Workspace& w) no
   for (int i = 0; i < M::kCorrections; ++i) {
     M::kinematics(s, w.k);
     M::constraint_rows(w.k, s.t, w.c);
-    positive = M::factorize(w.c) && positive;
+    positive = factorize_system<M>(s, w.c) && positive;
     M::correct_positions(w.c, s);
   }
   M::kinematics(s, w.k);
   M::constraint_rows(w.k, s.t, w.c);
-  positive = M::factorize(w.c) && positive;
+  positive = factorize_system<M>(s, w.c) && positive;
   correct_velocities<M>(w.c, s);
   w.k.vel = M::velocities_of(s);
   M::constraint_rows(w.k, s.t, w.c);  // the acceleration terms at the projected velocities

@@ -29,7 +29,7 @@
 
 namespace mbrt::schemes {
 
-// The kernels that form M^-1. Where masses are runtime parameters
+// The kernels that form M^-1 (staggered-nps: M's tree elimination). Where masses are runtime parameters
 // (docs/parameters.md) the model's take the state, which holds them; the
 // traits below tell the two forms apart (C++17: generated models build with it).
 template <class M, class = void>
@@ -50,6 +50,14 @@ template <class M>
 struct factorize_reads_state<M, std::void_t<decltype(M::factorize(std::declval<const typename M::State&>(),
                                                                   std::declval<typename M::ConstraintSystem&>()))>>
     : std::true_type {};
+
+template <class M, class = void>
+struct tree_factorize_reads_state : std::false_type {};
+template <class M>
+struct tree_factorize_reads_state<M, std::void_t<decltype(M::factorize_tree(
+                                         std::declval<const typename M::State&>(), std::declval<const typename M::Kinematics&>(),
+                                         std::declval<const typename M::ConstraintSystem&>(),
+                                         std::declval<typename M::TreeSystem&>()))>> : std::true_type {};
 
 template <class M>
 void constraint_directions(const typename M::State& s, typename M::ConstraintSystem& c) noexcept {
@@ -124,11 +132,14 @@ void correct_velocities(const typename M::ConstraintSystem& c, typename M::State
   M::set_velocities(u, s);
 }
 
-// staggered-nps factorizes the tree and the cut rows where the others factorize S.
+// staggered-nps factorizes the tree and the cut rows where the others factorize S;
+// its tree elimination takes the state where masses are runtime parameters.
 template <class M>
 bool factorize(const typename M::State& s, typename M::Workspace& w) noexcept {
   if constexpr (M::kScheme == Scheme::staggered_nps) {
-    bool positive = M::factorize_tree(w.k, w.c, w.t);
+    bool positive;
+    if constexpr (tree_factorize_reads_state<M>::value) positive = M::factorize_tree(s, w.k, w.c, w.t);
+    else positive = M::factorize_tree(w.k, w.c, w.t);
     if constexpr (M::kCutRows > 0) positive = M::factorize_cut(w.c, w.t) && positive;
     return positive;
   } else {
