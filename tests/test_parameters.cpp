@@ -23,7 +23,7 @@
 #include "tunable_slider.hpp"
 #include "arm_7_rk4.hpp"
 #include "tunable_arm_7.hpp"
-#include "tunable_rotor_rk4.hpp"
+#include "tunable_rotor_rk4_tree.hpp"
 #include "tunable_tree_pendulum_midpoint.hpp"
 #include "tunable_tree_pendulum_rk4.hpp"
 #include "tunable_tree_pendulum_staggered.hpp"
@@ -205,7 +205,7 @@ TEST_CASE("the tree schemes read gravity, mass, inertia and joint coordinates an
 }
 
 TEST_CASE("rk4-tree: a tunable inertia and joint spring give the rotor 2 pi sqrt(Jzz / k)") {
-  namespace m = mbrt::models::tunable_rotor_rk4;
+  namespace m = mbrt::models::tunable_rotor_rk4_tree;
   const auto angle = [](const m::State& s) { return s.q[0]; };
   const auto step = [](m::State& s) { return m::step(s); };
   for (const auto& [jzz, k] : {std::pair{0.05, 2.0}, std::pair{0.2, 2.0}, std::pair{0.05, 8.0}}) {

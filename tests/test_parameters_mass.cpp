@@ -16,12 +16,6 @@
 #include "tunable_physical_pendulum_ali3p.hpp"
 #include "tunable_physical_pendulum_nps.hpp"
 #include "tunable_physical_pendulum_rk4.hpp"
-#include "tunable_rotor_ali3p.hpp"
-#include "tunable_rotor_nps.hpp"
-#include "tunable_rotor_rk4.hpp"
-#include "tunable_slider_ali3p.hpp"
-#include "tunable_slider_nps.hpp"
-#include "tunable_slider_rk4.hpp"
 
 namespace {
 
@@ -52,12 +46,6 @@ constexpr double kArm = 0.5;  // d, pin to the link's centre
 MBRT_TUNABLE(tunable_physical_pendulum_nps);
 MBRT_TUNABLE(tunable_physical_pendulum_ali3p);
 MBRT_TUNABLE(tunable_physical_pendulum_rk4);
-MBRT_TUNABLE(tunable_rotor_nps);
-MBRT_TUNABLE(tunable_rotor_ali3p);
-MBRT_TUNABLE(tunable_rotor_rk4);
-MBRT_TUNABLE(tunable_slider_nps);
-MBRT_TUNABLE(tunable_slider_ali3p);
-MBRT_TUNABLE(tunable_slider_rk4);
 MBRT_FOLDED(physical_pendulum_nps);
 MBRT_FOLDED(physical_pendulum_ali3p);
 MBRT_FOLDED(physical_pendulum_rk4);
@@ -72,24 +60,18 @@ struct Nps {
   static constexpr const char* kName = "staggered-nps";
   using Pendulum = tunable_physical_pendulum_nps_model;
   using Folded = physical_pendulum_nps_model;
-  using Rotor = tunable_rotor_nps_model;
-  using Slider = tunable_slider_nps_model;
   static double period_error(double wh) { return wh * wh / 6.0; }  // twice (w h)^2 / 12
 };
 struct Ali3p {
   static constexpr const char* kName = "ali3p";
   using Pendulum = tunable_physical_pendulum_ali3p_model;
   using Folded = physical_pendulum_ali3p_model;
-  using Rotor = tunable_rotor_ali3p_model;
-  using Slider = tunable_slider_ali3p_model;
   static double period_error(double wh) { return wh * wh / 6.0; }  // twice (w h)^2 / 12
 };
 struct Rk4 {
   static constexpr const char* kName = "rk4-projected";
   using Pendulum = tunable_physical_pendulum_rk4_model;
   using Folded = physical_pendulum_rk4_model;
-  using Rotor = tunable_rotor_rk4_model;
-  using Slider = tunable_slider_rk4_model;
   static double period_error(double) { return 1e-8; }  // (w h)^4 <= 7e-9
 };
 
@@ -139,33 +121,6 @@ TEST_CASE_TEMPLATE("a physical pendulum's period follows 2 pi sqrt((J + m d^2) /
     CAPTURE(mass);
     CAPTURE(jzz);
     CHECK(relative(measured, expected) < S::period_error(omega * kStep));
-  }
-}
-
-TEST_CASE_TEMPLATE("a rotor's period follows 2 pi sqrt(Jzz / k) for the inertia set", S, Nps, Ali3p, Rk4) {
-  using M = typename S::Rotor;
-  INFO("scheme ", S::kName);
-  const auto angle = [](const typename M::State& s) { return 2.0 * std::atan2(s.rigid[0].p[3], s.rigid[0].p[0]); };
-  for (const double jzz : {0.05, 0.2, 0.025}) {
-    typename M::Parameters p = M::defaults();
-    REQUIRE(M::set(p, "rotor.inertia.zz", jzz));
-    REQUIRE(M::set(p, "rotor.mass", 7.0));  // no part in the turn
-    CAPTURE(jzz);
-    const double omega = std::sqrt(2.0 / jzz);  // k = 2 N m/rad
-    CHECK(relative(period<M>(M::initial_state(p), angle, 0.1, 7), 2.0 * kPi / omega) < S::period_error(omega * kStep));
-  }
-}
-
-TEST_CASE_TEMPLATE("a slider's period follows 2 pi sqrt(m / k) for the mass set", S, Nps, Ali3p, Rk4) {
-  using M = typename S::Slider;
-  INFO("scheme ", S::kName);
-  const auto x = [](const typename M::State& s) { return s.rigid[0].r.x(); };
-  for (const double mass : {1.0, 4.5, 0.25}) {
-    typename M::Parameters p = M::defaults();
-    REQUIRE(M::set(p, "block.mass", mass));
-    CAPTURE(mass);
-    const double omega = std::sqrt(20.0 / mass);  // k = 20 N/m
-    CHECK(relative(period<M>(M::initial_state(p), x, 1.0, 7), 2.0 * kPi / omega) < S::period_error(omega * kStep));
   }
 }
 
