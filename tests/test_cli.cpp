@@ -232,6 +232,25 @@ TEST_CASE("mbrt hil refuses a model without inputs and outputs before compiling 
   CHECK(r.err.find("compiling") == std::string::npos);
 }
 
+TEST_CASE("sim's and hil's --set keys are the model's tunable ones, checked before compiling") {
+  const std::string lcm = " --lcm 'udpm://239.255.76.67:7667?ttl=0' --duration 0";
+  const struct { std::string command, message; } bad[] = {
+      {"sim " + model("tunable_pendulum.yaml") + " --set bob.colour=1",
+       "--set: 'bob.colour' is not a tunable parameter of tunable_pendulum; the tunable ones are gravity.x"},
+      {"sim " + model("tunable_pendulum.yaml") + " --set bob.mass=heavy",
+       "--set: expected KEY=VALUE with a finite number, got 'bob.mass=heavy'"},
+      {"hil " + model("actuated.yaml") + lcm + " --set gravity.z=-1",
+       "--set: 'gravity.z' is not a tunable parameter of actuated (it marks none"},
+      {"hil " + model("actuated.yaml") + lcm + " --set =1", "--set: expected KEY=VALUE, got '=1'"}};
+  for (const auto& b : bad) {
+    const Run r = mbrt(b.command);
+    INFO(b.command << ": " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(b.message) != std::string::npos);
+    CHECK(r.err.find("compiling") == std::string::npos);
+  }
+}
+
 TEST_CASE("mbrt hil refuses an IPv6 LCM group, saying that LCM's udpm provider is IPv4-only") {
   for (const std::string url : {"udpm://[ff15::1]:7667?ttl=0", "udpm://ff15::1:7667"}) {
     const Run r = mbrt("hil " + model("actuated.yaml") + " --lcm '" + url + "' --duration 0");
