@@ -103,6 +103,15 @@ std::vector<StateField> Emitter::state_fields() const {
                  "q", "double", "DOFS", "", tree_dofs()});
     f.push_back({"", "qd", "double", "DOFS", "", tree_dofs()});
     f.push_back({"", "qdd", "double", "DOFS", "", tree_dofs()});
+    const int friction = static_cast<int>(friction_frames().size());
+    if (friction > 0) {
+      f.push_back({"  // Joint friction by friction:: index (docs/friction.md): the friction torque or\n"
+                   "  // force of the last step (its impulse / h; N m or N, along +q), and 1 where\n"
+                   "  // the joint stuck in it, 0 where it slipped.\n"
+                   "  std::array<double, kFrictionJoints> friction{}, stuck{};\n",
+                   "friction", "double", "FRICTION_JOINTS", "", friction});
+      f.push_back({"", "stuck", "double", "FRICTION_JOINTS", "", friction});
+    }
     acceleration_comment =
         "  // Body accelerations and constraint multipliers at the state, which\n"
         "  // step() does not need: set by initial_state() and set_multipliers().\n";
@@ -260,6 +269,7 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
       << "  HalfAngles half_angles;  // of s.q\n"
       << "  Dofs rates;              // the rates the recursion runs at\n"
       << (scheme_kind() == Scheme::rk4_tree ? "  Dofs q_sum, qd_sum;      // the stages' weighted rates and accelerations\n" : "")
+      << (friction_frames().empty() ? "" : "  FrictionColumns friction_columns;  // M^-1's columns of the friction joints\n")
       << "  detail::Kinematics k;    // where loads other than gravity need the bodies\n"
       << "  detail::Loads l;\n"
       << "};\n\n"
@@ -337,6 +347,7 @@ void Emitter::model_members(std::ostringstream& o) const {
         << "\n"
         << "static constexpr bool kExternalLoads = " << (tree_external_loads() ? "true" : "false")
         << ";  // loads other than gravity\n";
+      friction_constants(o);
       break;
   }
   o << "\n";

@@ -2,6 +2,7 @@
 // (Featherstone 2008, "Rigid Body Dynamics Algorithms", table 7.1) in joint
 // coordinates, run here on symbolic values so that the generated code keeps
 // only the operations this model's numbers need.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,134 @@ Inertia to_parent(const Transform& x, const Inertia& I) {
 
 }  // namespace
 
+// The articulated-body recursion (Featherstone 2008, table 7.1) recorded
+// into the current StraightLine: each frame's joint acceleration, gravity
+// entering as the ground's acceleration -g. terms leaves out the rates,
+// gravity or the applied loads, and adds a unit force in one joint: with
+// none of the first three, the result is that joint's column of M^-1.
+std::vector<Expr> Emitter::tree_recursion(const TreeRecursionTerms& terms) const {
+  const std::vector<TreeFrame>& frames = a_.tree_frames.frames;
+  const size_t n = frames.size();
+  const auto dof = [&](size_t k) { return "body::" + body(frames[k].body).name; };
+  StraightLine& line = StraightLine::current();
+  // A model value, or the runtime parameter that replaces it.
+  const auto value = [&](ParameterTarget target, int index, int component, double folded) {
+    return tunable(target, index, component) ? line.input(value_of(target, index, component, folded, "s.params"))
+                                             : Expr(folded);
+  };
+  std::vector<Transform> x(n);
+  std::vector<Motion> v(n), c(n), a(n);
+  std::vector<Inertia> ia(n);
+  std::vector<Wrench> pa(n);
+  std::vector<Expr> d(n), u(n), inv_d(n), qdds(n);
+  std::vector<std::array<Expr, 6>> w(n);
+  for (size_t k = 0; k < n; ++k) {
+    const TreeFrame& f = frames[k];
+    const Expr q = line.input("s.q[" + dof(k) + "]");
+    x[k] = transform_of(f, "ha[" + dof(k) + "]", q);
+    const Motion s_qd = along_axis(f, terms.rates ? line.input("qd[" + dof(k) + "]") : Expr(0.0));
+    if (f.parent == kGround) {
+      v[k] = s_qd;
+      c[k] = {V3{0.0, 0.0, 0.0}, V3{0.0, 0.0, 0.0}};
+    } else {
+      v[k] = to_child(x[k], v[static_cast<size_t>(f.parent)]) + s_qd;
+      c[k] = cross(v[k], s_qd);
+    }
+    if (plan(f.body).tunable_mass) {
+      // The inertia in frame axes from the principal moments: E diag(J) E^T.
+      const Eigen::Vector3d j = body(f.body).inertia.diagonal();
+      M3 ic;
+      for (size_t r = 0; r < 3; ++r) {
+        for (size_t c = 0; c < 3; ++c) {
+          for (int m = 0; m < 3; ++m) {
+            const double e = f.body_axes(static_cast<Eigen::Index>(r), m) * f.body_axes(static_cast<Eigen::Index>(c), m);
+            if (e != 0.0) ic[r][c] = ic[r][c] + e * value(ParameterTarget::inertia, f.body, m, j[m]);
+          }
+        }
+      }
+      const Expr mass = value(ParameterTarget::mass, f.body, 0, f.mass);
+      ia[k] = rigid_inertia(mass, f.com, ic);
+      pa[k] = rigid_bias(mass, f.com, ic, v[k]);
+    } else {
+      ia[k] = rigid_inertia(f.mass, f.com, f.inertia);
+      pa[k] = rigid_bias(f.mass, f.com, constant(f.inertia), v[k]);
+    }
+    if (terms.loads && tree_external_loads()) {
+      // The applied wrench at the COM: force in world axes, torque in body axes.
+      const std::string b = "body::" + body(f.body).name;
+      const M3 axes = constant(f.body_axes);
+      V3 force_world, torque_body;
+      M3 rot;
+      for (int i = 0; i < 3; ++i) {
+        force_world[static_cast<size_t>(i)] = line.input("l.w[" + b + "].f[" + std::to_string(i) + "]");
+        torque_body[static_cast<size_t>(i)] = line.input("l.w[" + b + "].tau[" + std::to_string(i) + "]");
+        for (int j = 0; j < 3; ++j) rot[static_cast<size_t>(i)][static_cast<size_t>(j)] = line.input("k.pose[" + b + "].R(" + std::to_string(i) + ", " + std::to_string(j) + ")");
+      }
+      const V3 force = times(axes, transpose_times(rot, force_world));
+      const V3 torque = times(axes, torque_body);
+      pa[k] = pa[k] - Wrench{torque + cross(constant(f.com), force), force};
+    }
+  }
+  for (size_t k = n; k-- > 0;) {
+    const TreeFrame& f = frames[k];
+    const int i = axis_index(f);
+    std::array<Expr, 6> col;
+    for (int r = 0; r < 6; ++r) col[static_cast<size_t>(r)] = ia[k].at(r, i);
+    // The armature adds to the joint's own inertia only (Featherstone
+    // section 7.3: D = S^T IA S plus the rotor's); without one, W's own
+    // entry and the reduced inertia's row and column of the joint are
+    // exactly 1 and 0, and are set so.
+    const bool plain = f.armature == 0.0;
+    d[k] = col[static_cast<size_t>(i)] + f.armature;
+    inv_d[k] = 1.0 / d[k];
+    for (int r = 0; r < 6; ++r) w[k][static_cast<size_t>(r)] = r == i && plain ? Expr(1.0) : col[static_cast<size_t>(r)] * inv_d[k];
+    u[k] = -component(pa[k], i);
+    const double force = static_cast<int>(k) == terms.unit_force ? 1.0 : 0.0;  // the joint's own
+    u[k] = u[k] + force;
+    if (f.parent == kGround) continue;
+    // Articulated inertia and bias force the parent sees through the joint.
+    Inertia reduced = ia[k];
+    for (int r = 0; r < 6; ++r)
+      for (int s = r; s < 6; ++s)
+        reduced.set(r, s, plain && (r == i || s == i) ? Expr(0.0) : ia[k].at(r, s) - w[k][static_cast<size_t>(r)] * col[static_cast<size_t>(s)]);
+    Wrench bias = pa[k] + times(reduced, c[k]);
+    bias.n = bias.n + u[k] * V3{w[k][0], w[k][1], w[k][2]};
+    bias.f = bias.f + u[k] * V3{w[k][3], w[k][4], w[k][5]};
+    // Without armature, the joint's own component of the bias is pa's plus
+    // u: the joint's force.
+    if (plain && f.revolute) bias.n[2] = force;
+    if (plain && !f.revolute) bias.f[2] = force;
+    const size_t p = static_cast<size_t>(f.parent);
+    ia[p] = ia[p] + to_parent(x[k], reduced);
+    pa[p] = pa[p] + to_parent(x[k], bias);
+  }
+  const Eigen::Vector3d g = m_.gravity.value_or(Eigen::Vector3d::Zero());
+  Motion ground{V3{0.0, 0.0, 0.0}, V3{0.0, 0.0, 0.0}};
+  for (int i = 0; i < 3; ++i) {
+    if (terms.gravity) ground.v[static_cast<size_t>(i)] = -value(ParameterTarget::gravity, -1, i, g[i]);
+  }
+  for (size_t k = 0; k < n; ++k) {
+    const TreeFrame& f = frames[k];
+    const Motion from = f.parent == kGround ? ground : a[static_cast<size_t>(f.parent)];
+    const Motion ap = to_child(x[k], from) + c[k];
+    // The joint's own component of a = ap + S qdd is u / D - W' ap, W'
+    // being W without its unit entry (no armature); qdd follows from it.
+    const int i = axis_index(f);
+    const bool plain = f.armature == 0.0;
+    Expr wa = 0.0;
+    for (int r = 0; r < 6; ++r) {
+      if (r != i || !plain) wa = wa + w[k][static_cast<size_t>(r)] * component(ap, r);
+    }
+    const Expr along = u[k] * inv_d[k] - wa;
+    const Expr qdd = plain ? along - component(ap, i) : along;
+    a[k] = ap;
+    Expr& own = (f.revolute ? a[k].w : a[k].v)[2];
+    own = plain ? along : own + qdd;
+    qdds[k] = qdd;
+  }
+  return qdds;
+}
+
 bool Emitter::tree_scheme() const { return mbrt::joint_space(scheme_kind()); }
 
 std::string Emitter::tree_step_name() const {
@@ -100,6 +229,71 @@ void Emitter::tree_types(std::ostringstream& o) const {
     << "using Dofs = std::array<double, kDofs>;\n"
     << "// cos and sin of half of each revolute joint's angle from its frame's x axis.\n"
     << "using HalfAngles = std::array<mbrt::SinCos, kDofs>;\n\n";
+  const std::vector<size_t> friction = friction_frames();
+  if (friction.empty()) return;
+  o << "// The joints with Coulomb friction (docs/friction.md), friction:: indices\n"
+    << "// into State::friction and State::stuck.\n"
+    << "inline constexpr int kFrictionJoints = " << friction.size() << ";\nnamespace friction {\n";
+  for (size_t c = 0; c < friction.size(); ++c) {
+    o << "inline constexpr int " << m_.joints[static_cast<size_t>(a_.tree_frames.frames[friction[c]].joint)].name << " = " << c << ";\n";
+  }
+  o << "}  // namespace friction\n"
+    << "// Column c: M^-1 times a unit force in friction joint c.\n"
+    << "using FrictionColumns = std::array<Dofs, kFrictionJoints>;\n\n";
+}
+
+std::vector<size_t> Emitter::friction_frames() const {
+  const std::vector<TreeFrame>& frames = a_.tree_frames.frames;
+  std::vector<size_t> out;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    if (frames[k].friction > 0.0) out.push_back(k);
+  }
+  std::sort(out.begin(), out.end(), [&](size_t a, size_t b) { return frames[a].joint < frames[b].joint; });
+  return out;
+}
+
+// The projected Gauss-Seidel sweeps of the friction impulses per step
+// (include/mbrt/joint_friction.hpp): one is exact for one joint; for more,
+// two per joint, warm-started from the last step's (docs/friction.md).
+void Emitter::friction_constants(std::ostringstream& o) const {
+  const std::vector<size_t> friction = friction_frames();
+  if (friction.empty()) return;
+  std::string dofs, limits;
+  for (size_t c = 0; c < friction.size(); ++c) {
+    const TreeFrame& f = a_.tree_frames.frames[friction[c]];
+    dofs += (c ? ", " : "") + std::string("body::") + body(f.body).name;
+    limits += (c ? ", " : "") + num(f.friction);
+  }
+  const size_t sweeps = friction.size() == 1 ? 1 : 2 * friction.size();
+  o << "// Joint friction (docs/friction.md), by friction:: index: each joint's\n"
+    << "// coordinate and Coulomb limit (N m or N); projected Gauss-Seidel sweeps a step.\n"
+    << "static constexpr int kFrictionJoints = mbrt::models::" << m_.name << "::kFrictionJoints;\n"
+    << "using FrictionColumns = mbrt::models::" << m_.name << "::FrictionColumns;\n"
+    << "static constexpr std::array<std::size_t, kFrictionJoints> kFrictionDof{{" << dofs << "}};\n"
+    << "static constexpr std::array<double, kFrictionJoints> kFrictionLimit{{" << limits << "}};\n"
+    << "static constexpr int kFrictionSweeps = " << sweeps << ";\n";
+}
+
+// M^-1's columns of the friction joints at s.q: the recursion without rates,
+// gravity and loads, once per joint with a unit force in it; the articulated
+// inertias are common to all and recorded once.
+void Emitter::friction_response_kernel(std::ostringstream& o) const {
+  const std::vector<size_t> friction = friction_frames();
+  if (friction.empty()) return;
+  const std::vector<TreeFrame>& frames = a_.tree_frames.frames;
+  StraightLine line;
+  for (size_t c = 0; c < friction.size(); ++c) {
+    const std::vector<Expr> column = tree_recursion({false, false, false, static_cast<int>(friction[c])});
+    for (size_t k = 0; k < frames.size(); ++k) {
+      line.output("g[" + std::to_string(c) + "][body::" + body(frames[k].body).name + "]", column[k]);
+    }
+  }
+  o << "// (s.q" << (a_.tunable ? ", s.params" : "") << ") => (g): M^-1 times a unit force in each friction joint,\n"
+    << "// the articulated-body recursion without rates, gravity or loads.\n"
+    << line.count().comment() << "\n"
+    << "static void friction_response([[maybe_unused]] const State& s, [[maybe_unused]] const HalfAngles& ha, "
+    << "FrictionColumns& g) noexcept {\n"
+    << line.code("  ") << "}\n\n";
 }
 
 void Emitter::tree_kernels(std::ostringstream& o) const {
@@ -117,118 +311,10 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
   }
   o << "}\n\n";
 
-  // The recursion, gravity entering as the ground's acceleration -g.
   {
     StraightLine line;
-    // A model value, or the runtime parameter that replaces it.
-    const auto value = [&](ParameterTarget target, int index, int component, double folded) {
-      return tunable(target, index, component) ? line.input(value_of(target, index, component, folded, "s.params"))
-                                               : Expr(folded);
-    };
-    std::vector<Transform> x(n);
-    std::vector<Motion> v(n), c(n), a(n);
-    std::vector<Inertia> ia(n);
-    std::vector<Wrench> pa(n);
-    std::vector<Expr> d(n), u(n), inv_d(n);
-    std::vector<std::array<Expr, 6>> w(n);
-    for (size_t k = 0; k < n; ++k) {
-      const TreeFrame& f = frames[k];
-      const Expr q = line.input("s.q[" + dof(k) + "]");
-      x[k] = transform_of(f, "ha[" + dof(k) + "]", q);
-      const Motion s_qd = along_axis(f, line.input("qd[" + dof(k) + "]"));
-      if (f.parent == kGround) {
-        v[k] = s_qd;
-        c[k] = {V3{0.0, 0.0, 0.0}, V3{0.0, 0.0, 0.0}};
-      } else {
-        v[k] = to_child(x[k], v[static_cast<size_t>(f.parent)]) + s_qd;
-        c[k] = cross(v[k], s_qd);
-      }
-      if (plan(f.body).tunable_mass) {
-        // The inertia in frame axes from the principal moments: E diag(J) E^T.
-        const Eigen::Vector3d j = body(f.body).inertia.diagonal();
-        M3 ic;
-        for (size_t r = 0; r < 3; ++r) {
-          for (size_t c = 0; c < 3; ++c) {
-            for (int m = 0; m < 3; ++m) {
-              const double e = f.body_axes(static_cast<Eigen::Index>(r), m) * f.body_axes(static_cast<Eigen::Index>(c), m);
-              if (e != 0.0) ic[r][c] = ic[r][c] + e * value(ParameterTarget::inertia, f.body, m, j[m]);
-            }
-          }
-        }
-        const Expr mass = value(ParameterTarget::mass, f.body, 0, f.mass);
-        ia[k] = rigid_inertia(mass, f.com, ic);
-        pa[k] = rigid_bias(mass, f.com, ic, v[k]);
-      } else {
-        ia[k] = rigid_inertia(f.mass, f.com, f.inertia);
-        pa[k] = rigid_bias(f.mass, f.com, constant(f.inertia), v[k]);
-      }
-      if (tree_external_loads()) {
-        // The applied wrench at the COM: force in world axes, torque in body axes.
-        const std::string b = "body::" + body(f.body).name;
-        const M3 axes = constant(f.body_axes);
-        V3 force_world, torque_body;
-        M3 rot;
-        for (int i = 0; i < 3; ++i) {
-          force_world[static_cast<size_t>(i)] = line.input("l.w[" + b + "].f[" + std::to_string(i) + "]");
-          torque_body[static_cast<size_t>(i)] = line.input("l.w[" + b + "].tau[" + std::to_string(i) + "]");
-          for (int j = 0; j < 3; ++j) rot[static_cast<size_t>(i)][static_cast<size_t>(j)] = line.input("k.pose[" + b + "].R(" + std::to_string(i) + ", " + std::to_string(j) + ")");
-        }
-        const V3 force = times(axes, transpose_times(rot, force_world));
-        const V3 torque = times(axes, torque_body);
-        pa[k] = pa[k] - Wrench{torque + cross(constant(f.com), force), force};
-      }
-    }
-    for (size_t k = n; k-- > 0;) {
-      const TreeFrame& f = frames[k];
-      const int i = axis_index(f);
-      std::array<Expr, 6> col;
-      for (int r = 0; r < 6; ++r) col[static_cast<size_t>(r)] = ia[k].at(r, i);
-      // The armature adds to the joint's own inertia only (Featherstone
-      // section 7.3: D = S^T IA S plus the rotor's); without one, W's own
-      // entry and the reduced inertia's row and column of the joint are
-      // exactly 1 and 0, and are set so.
-      const bool plain = f.armature == 0.0;
-      d[k] = col[static_cast<size_t>(i)] + f.armature;
-      inv_d[k] = 1.0 / d[k];
-      for (int r = 0; r < 6; ++r) w[k][static_cast<size_t>(r)] = r == i && plain ? Expr(1.0) : col[static_cast<size_t>(r)] * inv_d[k];
-      u[k] = -component(pa[k], i);
-      if (f.parent == kGround) continue;
-      // Articulated inertia and bias force the parent sees through the joint.
-      Inertia reduced = ia[k];
-      for (int r = 0; r < 6; ++r)
-        for (int s = r; s < 6; ++s)
-          reduced.set(r, s, plain && (r == i || s == i) ? Expr(0.0) : ia[k].at(r, s) - w[k][static_cast<size_t>(r)] * col[static_cast<size_t>(s)]);
-      Wrench bias = pa[k] + times(reduced, c[k]);
-      bias.n = bias.n + u[k] * V3{w[k][0], w[k][1], w[k][2]};
-      bias.f = bias.f + u[k] * V3{w[k][3], w[k][4], w[k][5]};
-      if (plain && f.revolute) bias.n[2] = 0.0;
-      if (plain && !f.revolute) bias.f[2] = 0.0;
-      const size_t p = static_cast<size_t>(f.parent);
-      ia[p] = ia[p] + to_parent(x[k], reduced);
-      pa[p] = pa[p] + to_parent(x[k], bias);
-    }
-    const Eigen::Vector3d g = m_.gravity.value_or(Eigen::Vector3d::Zero());
-    Motion ground{V3{0.0, 0.0, 0.0}, V3{0.0, 0.0, 0.0}};
-    for (int i = 0; i < 3; ++i) ground.v[static_cast<size_t>(i)] = -value(ParameterTarget::gravity, -1, i, g[i]);
-    for (size_t k = 0; k < n; ++k) {
-      const TreeFrame& f = frames[k];
-      const Motion from = f.parent == kGround ? ground : a[static_cast<size_t>(f.parent)];
-      const Motion ap = to_child(x[k], from) + c[k];
-      // The joint's own component of a = ap + S qdd is u / D - W' ap, W'
-      // being W without its unit entry (no armature); qdd follows from it.
-      const int i = axis_index(f);
-      const bool plain = f.armature == 0.0;
-      Expr wa = 0.0;
-      for (int r = 0; r < 6; ++r) {
-        if (r != i || !plain) wa = wa + w[k][static_cast<size_t>(r)] * component(ap, r);
-      }
-      const Expr along = u[k] * inv_d[k] - wa;
-      const Expr qdd = plain ? along - component(ap, i) : along;
-      a[k] = ap;
-      Expr& own = (f.revolute ? a[k].w : a[k].v)[2];
-      own = plain ? along : own + qdd;
-      line.output("qdd[" + dof(k) + "]", qdd);
-    }
+    const std::vector<Expr> qdd = tree_recursion({});
+    for (size_t k = 0; k < n; ++k) line.output("qdd[" + dof(k) + "]", qdd[k]);
     o << "// (s.q, qd" << (tree_external_loads() ? ", k, l" : "") << (a_.tunable ? ", s.params" : "")
       << ") => (qdd): the articulated-body recursion, this model's nonzero terms only.\n"
       << line.count().comment() << "\n"
@@ -237,6 +323,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       << "[[maybe_unused]] const Kinematics& k, [[maybe_unused]] const Loads& l, Dofs& qdd) noexcept {\n"
       << line.code("  ") << "}\n\n";
   }
+  friction_response_kernel(o);
 
   // Body states from the joint coordinates, chained from body to body in the
   // bodies' own axes: a body's Euler parameters are its parent's times a

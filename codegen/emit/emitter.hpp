@@ -21,6 +21,7 @@
 #include "parameters.hpp"
 #include "principal_frame.hpp"
 #include "planar_scene.hpp"
+#include "straight_line.hpp"
 
 namespace mbrt::codegen {
 
@@ -62,6 +63,16 @@ struct StateField {
   std::string c_length;     // its array length's constant after "<NAME>_" (RIGID_BODIES, ...); "" for a scalar
   std::string c_inner;      // the element's own extent ("[3]" for a Vec3), or ""
   int count;                // elements; 0 leaves it out of the C struct (C has no empty arrays)
+};
+
+// The terms the tree's articulated-body recursion runs with (emit_tree.cpp):
+// all of them for the joint accelerations; none but a unit force in one
+// joint (a frame index) for that joint's column of M^-1.
+struct TreeRecursionTerms {
+  bool rates = true;
+  bool gravity = true;
+  bool loads = true;
+  int unit_force = -1;
 };
 
 // Writes the generated files for one model.
@@ -269,6 +280,12 @@ class Emitter {
   void tree_types(std::ostringstream& o) const;  // kDofs, Dofs, HalfAngles
   int tree_dofs() const { return static_cast<int>(a_.tree_frames.frames.size()); }
   void tree_kernels(std::ostringstream& o) const;
+  std::vector<Expr> tree_recursion(const TreeRecursionTerms& terms) const;  // into StraightLine::current()
+  // Joint friction (docs/friction.md): the frames of the joints with
+  // friction, in the model's joint order; their constants and kernel.
+  std::vector<size_t> friction_frames() const;
+  void friction_constants(std::ostringstream& o) const;  // in struct Model
+  void friction_response_kernel(std::ostringstream& o) const;
 
   // emit_planar.cpp: namespace planar { ... step(s) } from a planar emitter.
   void planar_stages(std::ostringstream& o) const;

@@ -23,8 +23,9 @@ StraightLine& StraightLine::current() {
 
 Expr StraightLine::input(const std::string& cpp) {
   Expr e;
-  e.node_ = static_cast<int>(nodes_.size());
-  nodes_.push_back({'i', {}, {}, cpp});
+  const auto [it, added] = inputs_.try_emplace(cpp, static_cast<int>(nodes_.size()));
+  e.node_ = it->second;
+  if (added) nodes_.push_back({'i', {}, {}, cpp});
   return e;
 }
 

@@ -55,7 +55,8 @@ class StraightLine {
   StraightLine(const StraightLine&) = delete;
   StraightLine& operator=(const StraightLine&) = delete;
 
-  // A value the function reads: a C++ expression of its arguments.
+  // A value the function reads: a C++ expression of its arguments, one node
+  // however often it is asked for.
   Expr input(const std::string& cpp);
   // Writes e to target (a C++ lvalue) at the end of the function.
   void output(const std::string& target, const Expr& e);
@@ -87,6 +88,7 @@ class StraightLine {
   std::string operand(const Expr& e, const std::vector<std::string>& names) const;
   std::vector<Node> nodes_;
   std::map<std::tuple<char, int, bool, double, int, bool, double>, int> seen_;
+  std::map<std::string, int> inputs_;  // input nodes by their text
   std::vector<std::pair<std::string, Expr>> outputs_;
   StraightLine* previous_;
 };

@@ -32,10 +32,10 @@ struct JointTypeRow {
 inline constexpr std::array<JointTypeRow, kJointTypeCount> kJointTypeTable{{
     // type, name, keys, rows, holonomic_rows, ground_contact, rigid_bodies, kernel
     {JointType::spherical,       "spherical",       "body1 body2 point",                           3, 3, false, false, "spherical"},
-    {JointType::revolute,        "revolute",        "body1 body2 point axis armature",             5, 5, false, true,  "revolute"},
+    {JointType::revolute,        "revolute",        "body1 body2 point axis armature friction",    5, 5, false, true,  "revolute"},
     {JointType::universal,       "universal",       "body1 body2 point axis1 axis2",               4, 4, false, true,  "universal"},
     {JointType::cylindrical,     "cylindrical",     "body1 body2 point axis",                      4, 4, false, true,  "cylindrical"},
-    {JointType::prismatic,       "prismatic",       "body1 body2 point axis armature",             5, 5, false, true,  "prismatic"},
+    {JointType::prismatic,       "prismatic",       "body1 body2 point axis armature friction",    5, 5, false, true,  "prismatic"},
     {JointType::fixed,           "fixed",           "body1 body2 point",                           6, 6, false, true,  "fixed"},
     {JointType::distance,        "distance",        "body1 body2 point1 point2 length",            1, 1, false, false, "distance"},
     {JointType::screw,           "screw",           "body1 body2 point axis lead",                 5, 5, false, true,  "screw"},

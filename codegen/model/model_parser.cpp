@@ -39,6 +39,10 @@ const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "pe
 const Keys kAli3pKeys = {"alpha",      "relative_shift",        "alpha_of",   "newton_iterations",
                          "projection", "projection_iterations", "integrator", "rho_inf"};
 
+// A joint's friction: constant Coulomb friction, a torque (revolute) or a
+// force (prismatic); the load-dependent keys are refused by name.
+const Keys kFrictionKeys = {"torque", "force", "static", "kinetic", "radius"};
+
 const Keys kSchemes(mbrt::kSchemeNames.begin(), mbrt::kSchemeNames.end());
 
 // Axes shorter than this cannot be normalized meaningfully.
@@ -450,6 +454,24 @@ Joint parse_contact(const Section& s, const Model& model, Joint& j) {
   return j;
 }
 
+// friction: {torque: T} on a revolute joint, {force: F} on a prismatic one.
+double read_joint_friction(const Value& v, JointType type) {
+  const Section s(v, kFrictionKeys);
+  for (const char* key : {"static", "kinetic", "radius"}) {
+    if (auto x = s.find(key)) {
+      fail(*x, "load-dependent friction (static, kinetic, radius) is not supported yet; give a constant "
+               "friction torque (revolute) or force (prismatic) (docs/friction.md)");
+    }
+  }
+  const bool revolute = type == JointType::revolute;
+  const char* wrong = revolute ? "force" : "torque";
+  if (auto x = s.find(wrong)) {
+    fail(*x, std::string("a ") + (revolute ? "revolute joint's friction is a torque: friction: {torque: N m}"
+                                           : "prismatic joint's friction is a force: friction: {force: N}"));
+  }
+  return read_non_negative(s.get(revolute ? "torque" : "force"));
+}
+
 Joint parse_joint(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
   const Section s(item, every_joint_key());
   Joint j;
@@ -481,6 +503,7 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
       j.point = read_vector3(s.get("point"));
       j.axis = read_axis(s.get("axis"));
       if (auto x = s.find("armature")) j.armature = read_non_negative(*x);
+      if (auto x = s.find("friction")) j.friction = read_joint_friction(*x, j.type);
       break;
     case JointType::screw: {
       j.point = read_vector3(s.get("point"));

@@ -507,12 +507,28 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
                            "): in absolute coordinates a rotor's inertia would couple the two bodies' mass blocks");
     }
   }
+  for (const Joint& j : model.joints) {
+    if (j.friction > 0.0 && !mbrt::joint_space(model.solver.scheme)) {
+      throw ModelError(j.where, "joints." + j.name + ".friction",
+                       "joint friction needs a tree scheme, rk4-tree, midpoint-tree or staggered-tree (the scheme is " +
+                           std::string(mbrt::scheme_name(model.solver.scheme)) +
+                           "): the schemes in absolute coordinates do not support it yet (docs/friction.md)");
+    }
+  }
   if (mbrt::joint_space(model.solver.scheme)) {
     a.tree_frames = plan_tree_frames(model, a.constraints);
     if (!a.tree_frames.refusal.empty()) {
       throw ModelError({model.file, 0, 0}, "solver.scheme",
                        std::string(mbrt::scheme_name(model.solver.scheme)) + " needs bodies hanging from ground by revolute and prismatic joints: " +
                            a.tree_frames.refusal + " (use staggered-pcst or staggered-nps)");
+    }
+    for (const TreeFrame& f : a.tree_frames.frames) {
+      if (f.friction > 0.0 && f.parent != kGround) {
+        const Joint& j = model.joints[static_cast<size_t>(f.joint)];
+        throw ModelError(j.where, "joints." + j.name + ".friction",
+                         "friction in a joint between two moving bodies is not supported yet; only joints to the "
+                         "ground take it (docs/friction.md)");
+      }
     }
   }
 

@@ -17,7 +17,9 @@
 //   types     State (t, q, qd, qdd, rigid, ...), Workspace, Dofs, HalfAngles;
 //   constants kStep, kStages (recursions per step), kExternalLoads;
 //   kernels   half_angles, body_states, kinematics, tree_loads,
-//             joint_accelerations.
+//             joint_accelerations;
+// and, where joints have friction, what joint_friction.hpp needs: each step
+// applies the friction impulses to the rates it ends with (tree_friction).
 #pragma once
 
 #include <cmath>
@@ -25,6 +27,7 @@
 #include "mbrt/mul_add.hpp"
 #include "mbrt/scheme.hpp"
 #include "mbrt/body_state.hpp"
+#include "mbrt/schemes/joint_friction.hpp"
 #include "mbrt/step_status.hpp"
 
 namespace mbrt::schemes {
@@ -103,6 +106,7 @@ StepStatus tree_step(typename M::State& s, typename M::Workspace& w) noexcept {
     M::joint_accelerations(s, w.half_angles, w.rates, w.k, w.l, s.qdd);
   }
   for (std::size_t i = 0; i < s.q.size(); ++i) s.qd[i] += (0.5 * h) * s.qdd[i];
+  tree_friction<M>(s, w);
   M::body_states(s.q, w.half_angles, s.qd, s);
   return tree_step_end<M>(s, w);
 }
@@ -139,6 +143,7 @@ StepStatus tree_midpoint_step(typename M::State& s, typename M::Workspace& w) no
   }
   s.t = w.t0 + h;
   M::half_angles(s.q, w.half_angles);
+  tree_friction<M>(s, w);
   M::body_states(s.q, w.half_angles, s.qd, s);
   return tree_step_end<M>(s, w);
 }
@@ -181,6 +186,7 @@ StepStatus tree_rk4_step(typename M::State& s, typename M::Workspace& w) noexcep
   }
   s.t = w.t0 + h;
   M::half_angles(s.q, w.half_angles);
+  tree_friction<M>(s, w);
   M::body_states(s.q, w.half_angles, s.qd, s);
   return tree_step_end<M>(s, w);
 }

@@ -1,0 +1,87 @@
+// Constant Coulomb friction in the joints of a tree (docs/friction.md), as a
+// velocity-level impulse after the step without it: Moreau's sweeping
+// process (Moreau 1988, "Unilateral contact and dry friction in finite
+// freedom dynamics", in Nonsmooth Mechanics and Applications, CISM 302) as
+// time-stepping methods take it (Stewart 2000, "Rigid-body dynamics with
+// friction and impact", SIAM Review 42(1)). Over a step of length h the
+// friction impulses p_i of the friction joints satisfy the principle of
+// maximal dissipation:
+//   qd+ = qd_free + M(q)^-1 P p,   |p_i| <= T_i h,
+//   p_i = -T_i h sign(qd+_i) where qd+_i != 0 (slip), qd+_i = 0 where |p_i| < T_i h (stick),
+// P placing the joints' impulses among the joint coordinates. With the
+// joints' block G of M^-1 (positive diagonal), each p_i in turn is the
+// clamped value that zeroes its own end-of-step rate: projected
+// Gauss-Seidel, a fixed count of sweeps, warm-started from the last step's
+// impulses; one sweep is exact for one joint. The positions take the
+// impulse as a force p / h constant over the step, h^2/2 M^-1 P p / h: a
+// joint held at rest stays there, and a sliding joint under constant forces
+// moves as it should.
+//
+// M provides kFrictionJoints, kFrictionDof, kFrictionLimit, kFrictionSweeps
+// and friction_response (the columns M^-1 P, the articulated-body recursion
+// of Featherstone 2008, "Rigid Body Dynamics Algorithms", table 7.1, with a
+// unit force in one joint and nothing else); State has friction and stuck;
+// Workspace has friction_columns.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <type_traits>
+
+namespace mbrt::schemes {
+
+// A model's joints with friction: M::kFrictionJoints, or none where the
+// model declares none.
+template <class M, class = void>
+inline constexpr int kFrictionJointsOf = 0;
+template <class M>
+inline constexpr int kFrictionJointsOf<M, std::void_t<decltype(M::kFrictionJoints)>> = M::kFrictionJoints;
+
+// (s.q, s.qd without friction, w.half_angles of s.q) => (s.q, s.qd with the
+// friction impulses, s.friction, s.stuck, w.half_angles). Fixed work
+// whatever the joints do; allocates nothing.
+template <class M>
+void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
+  constexpr std::size_t n = M::kFrictionJoints;
+  constexpr double h = M::kStep;
+  auto& g = w.friction_columns;
+  M::friction_response(s, w.half_angles, g);
+  std::array<double, n> p, v, limit;  // impulses, their joints' rates, |p| bounds
+  for (std::size_t i = 0; i < n; ++i) {
+    limit[i] = M::kFrictionLimit[i] * h;
+    p[i] = std::fmin(std::fmax(s.friction[i] * h, -limit[i]), limit[i]);  // fmax drops a NaN of a failed step
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    v[i] = s.qd[M::kFrictionDof[i]];
+    for (std::size_t k = 0; k < n; ++k) v[i] += g[k][M::kFrictionDof[i]] * p[k];
+  }
+  for (int sweep = 0; sweep < M::kFrictionSweeps; ++sweep) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double next = std::fmin(std::fmax(p[i] - v[i] / g[i][M::kFrictionDof[i]], -limit[i]), limit[i]);
+      const double change = next - p[i];
+      p[i] = next;
+      for (std::size_t k = 0; k < n; ++k) v[k] += g[i][M::kFrictionDof[k]] * change;
+    }
+  }
+  for (std::size_t j = 0; j < s.qd.size(); ++j) {
+    double dv = 0.0;
+    for (std::size_t k = 0; k < n; ++k) dv += g[k][j] * p[k];
+    s.qd[j] += dv;
+    s.q[j] += (0.5 * h) * dv;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    s.friction[i] = p[i] / h;
+    s.stuck[i] = std::abs(p[i]) < limit[i] ? 1.0 : 0.0;
+  }
+  M::half_angles(s.q, w.half_angles);
+}
+
+// After a tree scheme's step, before its body states: the friction
+// impulses where the model has joint friction, nothing where it has none.
+template <class M>
+void tree_friction(typename M::State& s, typename M::Workspace& w) noexcept {
+  if constexpr (kFrictionJointsOf<M> > 0) joint_friction<M>(s, w);
+}
+
+}  // namespace mbrt::schemes

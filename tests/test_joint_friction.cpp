@@ -1,0 +1,176 @@
+// Constant Coulomb friction in revolute and prismatic joints (docs/friction.md)
+// against closed forms: blocks on an incline that stick and slide
+// (rk4-tree, staggered-tree), a pendulum with a friction moment whose
+// turning angles follow from the energy it loses (rk4-tree), and a two-link
+// arm on springs whose shoulder sticks while its elbow slips, swings and
+// sticks (midpoint-tree). The model keys' errors name file, line and key;
+// the step allocates nothing, stuck or slipping.
+//
+// Tolerances: the friction impulse acts on the end-of-step rates and moves
+// the positions as a force constant over the step, so a motion under
+// constant forces is integrated exactly and the error comes from the steps
+// in which a joint turns or sticks: one step's worth of the friction
+// acceleration, (T / I) h^2 in position (T / I = 0.6 rad/s^2 on the
+// pendulum, 0.5 on the elbow: 6e-7 rad at h = 1e-3), plus where a turning
+// point falls between two steps, half the acceleration there times h^2
+// (below 1.2e-5 rad). The checks allow 1e-4 rad; measured errors are in
+// docs/friction.md.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "allocation_counter.hpp"
+#include "friction_incline.hpp"
+#include "friction_incline_tree.hpp"
+#include "friction_pendulum.hpp"
+#include "analysis.hpp"
+#include "model.hpp"
+
+namespace {
+
+constexpr double kG = 9.81;
+
+// |theta_next| from |theta|: m g d (cos|theta_next| - cos|theta|) =
+// T (|theta| + |theta_next|), by bisection on (0, |theta|).
+double next_turning_angle(double theta, double mgd, double torque) {
+  double lo = 0.0, hi = theta;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const double residual = mgd * (std::cos(mid) - std::cos(theta)) - torque * (theta + mid);
+    (residual > 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The incline in one scheme: the held block (12 N > m g sin 30 = 9.81 N)
+// never moves; the sliding one (3 N) moves by a t^2 / 2.
+#define CHECK_INCLINE(ns)                                                                   \
+  do {                                                                                      \
+    namespace m = mbrt::models::ns;                                                         \
+    m::State s = m::initial_state();                                                        \
+    const double a = kG * 0.5 - 3.0 / 2.0;                                                  \
+    const int steps = 2000;                                                                 \
+    for (int i = 0; i < steps; ++i) {                                                       \
+      REQUIRE(m::step(s) == mbrt::StepStatus::ok);                                          \
+      CHECK(s.stuck[m::friction::hold] == 1.0);                                             \
+      CHECK(s.stuck[m::friction::slide] == 0.0);                                            \
+      CHECK(std::abs(s.q[m::body::held]) < 1e-15);                                          \
+      CHECK(std::abs(s.qd[m::body::held]) < 1e-14);                                         \
+    }                                                                                       \
+    const double t = s.t;                                                                   \
+    CHECK(s.t == doctest::Approx(2.0).epsilon(1e-12));                                      \
+    CHECK(s.q[m::body::sliding] == doctest::Approx(0.5 * a * t * t).epsilon(1e-12));        \
+    CHECK(s.qd[m::body::sliding] == doctest::Approx(a * t).epsilon(1e-12));                 \
+    CHECK(s.friction[m::friction::slide] == doctest::Approx(-3.0).epsilon(1e-12));          \
+    /* holding: friction balances gravity's pull exactly */                                 \
+    CHECK(s.friction[m::friction::hold] == doctest::Approx(-2.0 * kG * 0.5).epsilon(1e-12)); \
+  } while (false)
+
+}  // namespace
+
+TEST_CASE("a block on an incline sticks when m g sin(theta) <= F and slides with a = g sin(theta) - F / m") {
+  SUBCASE("rk4-tree") { CHECK_INCLINE(friction_incline); }
+  SUBCASE("staggered-tree") { CHECK_INCLINE(friction_incline_tree); }
+}
+
+TEST_CASE("a pendulum with a friction moment turns at the angles its energy loss gives and sticks") {
+  namespace m = mbrt::models::friction_pendulum;
+  const double mgd = 1.0 * kG * 0.5, torque = 0.2, theta0 = 0.5;
+  // The closed-form turning angles, to the first at which it sticks.
+  std::vector<double> expected{theta0};
+  while (mgd * std::sin(expected.back()) > torque) expected.push_back(next_turning_angle(expected.back(), mgd, torque));
+  REQUIRE(expected.size() == 7);  // six swings: 0.5, 0.418, ..., then stuck
+  m::State s = m::initial_state();
+  std::vector<double> turning;  // |theta| where the rate changes sign or stops
+  double last_rate = 0.0;
+  double energy = m::energy(s).total();
+  for (int i = 0; i < 8000; ++i) {
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    const double theta = theta0 + s.q[m::body::rod], rate = s.qd[m::body::rod];
+    const double e = m::energy(s).total();
+    // Dissipates, but for the steps it turns in: friction reversing inside a step
+    // is first order, up to T |qdd| h^2 = 3e-6 J there (docs/friction.md).
+    CHECK(e <= energy + 3e-6);
+    energy = e;
+    // Within h of the turn: off by at most |qdd| h^2 / 2 = 4e-6 rad.
+    if (last_rate != 0.0 && (rate * last_rate < 0.0 || s.stuck[0] == 1.0)) turning.push_back(std::abs(theta));
+    last_rate = s.stuck[0] == 1.0 ? 0.0 : rate;
+  }
+  REQUIRE(turning.size() == expected.size() - 1);
+  for (std::size_t n = 0; n < turning.size(); ++n) {
+    INFO("turning angle ", n + 1);
+    CHECK(std::abs(turning[n] - expected[n + 1]) < 1e-4);
+  }
+  const double theta = theta0 + s.q[m::body::rod];
+  CHECK(s.stuck[0] == 1.0);
+  CHECK(mgd * std::abs(std::sin(theta)) <= torque);
+  CHECK(std::abs(std::abs(theta) - expected.back()) < 1e-4);
+  // Holds gravity's moment, to rk4's velocity after h from rest, h a (1 + h^2 a' / 6): 3e-6.
+  CHECK(s.friction[0] == doctest::Approx(mgd * std::sin(theta)).epsilon(1e-5));
+  // Stuck, it stays: the angle creeps by rk4's h^4 / 24 |a' a| a step (1e-13 rad).
+  const double held = s.q[m::body::rod];
+  for (int i = 0; i < 2000; ++i) REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+  CHECK(std::abs(s.q[m::body::rod] - held) < 1e-9);
+  CHECK(s.stuck[0] == 1.0);
+}
+
+TEST_CASE("the friction step allocates nothing and takes stuck and slipping states alike") {
+  namespace m = mbrt::models::friction_incline;
+  m::State s = m::initial_state();
+  m::Workspace w;
+  AllocationCounter counter;
+  for (int i = 0; i < 2; ++i) REQUIRE(m::step(s, w) == mbrt::StepStatus::ok);
+  CHECK(counter.count() == 0);
+  CHECK(s.stuck[m::friction::hold] == 1.0);
+  CHECK(s.stuck[m::friction::slide] == 0.0);
+}
+
+namespace {
+
+using mbrt::codegen::ModelError;
+
+std::string pendulum_with(const std::string& joint_extra, const std::string& type = "revolute") {
+  return "name: p\ngravity: [0, 0, -9.81]\nbodies:\n"
+         "  - {name: rod, mass: 1, inertia: [0.1, 0.1, 0.01], position: [0, 0, -0.5]}\n"
+         "joints:\n"
+         "  - {name: pin, type: " + type + ", body1: ground, body2: rod, point: [0, 0, 0]" +
+         (type == "spherical" ? "" : ", axis: [0, 1, 0]") + joint_extra + "}\n";
+}
+
+// The error's text (file:line: key: message) for a model that must fail.
+std::string error_of(const std::string& yaml) {
+  try {
+    const mbrt::codegen::Model model = mbrt::codegen::parse_model(yaml, "arm.yaml");
+    mbrt::codegen::analyse(model);
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("friction keys: errors name the file, line and key") {
+  const mbrt::codegen::Model ok = mbrt::codegen::parse_model(pendulum_with(", friction: {torque: 0.2}"), "arm.yaml");
+  CHECK(ok.joints[0].friction == 0.2);
+  const auto check = [](const std::string& yaml, const std::string& key, const std::string& phrase) {
+    const std::string what = error_of(yaml);
+    INFO(what);
+    CHECK(what.find("arm.yaml:6") != std::string::npos);
+    CHECK(what.find(key) != std::string::npos);
+    CHECK(what.find(phrase) != std::string::npos);
+  };
+  check(pendulum_with(", friction: {torque: -0.2}"), "joints[0].friction.torque", "expected a number >= 0");
+  check(pendulum_with(", friction: {force: 3}"), "joints[0].friction.force", "revolute joint's friction is a torque");
+  check(pendulum_with(", friction: {torque: 3}", "prismatic"), "joints[0].friction.torque",
+        "prismatic joint's friction is a force");
+  check(pendulum_with(", friction: {torque: 3, viscous: 1}"), "joints[0].friction.viscous", "unknown key 'viscous'");
+  check(pendulum_with(", friction: {static: 0.3, kinetic: 0.2, radius: 0.01}"), "joints[0].friction.static",
+        "load-dependent friction (static, kinetic, radius) is not supported yet");
+  check(pendulum_with(", friction: {torque: 0.1}", "spherical"), "joints[0].friction", "does not apply to a spherical joint");
+  check(pendulum_with(", friction: {torque: 0.1}") + "solver: {scheme: staggered-pcst}\n", "joints.pin.friction",
+
+        "joint friction needs a tree scheme, rk4-tree, midpoint-tree or staggered-tree");
+}
