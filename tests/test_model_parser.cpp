@@ -1086,7 +1086,7 @@ std::string item_with(const Keys& keys, const std::string& type_name, const std:
       {"armature", "0"}};
   std::map<std::string, std::string> values = kValues;
   values["type"] = type_name;
-  values["friction"] = type_name == "prismatic" ? "{force: 1}" : "{torque: 1}";
+  values["friction"] = type_name == "prismatic" ? "{force: 0}" : "{torque: 0}";  // none: any scheme takes it
   values["joint"] = joint;
   std::string item;
   for (const std::string& key : keys) {
