@@ -4,6 +4,7 @@
 // origin, gravity -g z), checked against closed forms and conservation laws.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
