@@ -16,7 +16,37 @@
 # passes further `mbrt gen` options (e.g. --ali3p-projection cuadrado,
 # --no-specialize, or --can-fd for the CAN layout in CAN FD frames). WARNINGS
 # compiles the generated code with mbrt_enable_warnings(), as warnings only.
+#
+# mbrt_add_model_pch(<target>)
+#
+# Optional, for a directory of many models: adds <target>, a precompiled
+# header of the runtime headers that generated code includes (every scheme's),
+# and sets MBRT_MODEL_PCH to it in the calling directory, so that the models
+# mbrt_add_model adds there afterwards (and in its subdirectories) reuse it
+# (target_precompile_headers REUSE_FROM) instead of parsing those headers
+# each. A model's flags must be the header's: LCM models (-fno-strict-aliasing)
+# and, where generated warnings are not errors anyway, WARNINGS models compile
+# without it. Without a call nothing changes.
 include(${CMAKE_CURRENT_LIST_DIR}/MbrtWarnings.cmake)
+
+function(mbrt_add_model_pch target)
+  set(source "${CMAKE_CURRENT_BINARY_DIR}/mbrt_models/${target}.cpp")
+  if(NOT EXISTS "${source}")
+    file(WRITE "${source}" "// The precompiled header of the generated models (mbrt_add_model_pch).\n")
+  endif()
+  add_library(${target} STATIC "${source}")
+  target_link_libraries(${target} PUBLIC mbrt::mbrt)
+  target_compile_features(${target} PUBLIC cxx_std_17)
+  if(MBRT_GENERATED_WARNINGS_ARE_ERRORS)
+    mbrt_enable_warnings(${target})
+  endif()
+  target_precompile_headers(${target} PRIVATE
+    <algorithm> <array> <cmath> <cstddef>
+    <mbrt/model_api.hpp> <mbrt/runtime.hpp> <mbrt/reactions.hpp> <mbrt/sin_cos.hpp>
+    <mbrt/natural_partitioning.hpp> <mbrt/schemes/staggered.hpp> <mbrt/schemes/tree.hpp>
+    <mbrt/schemes/ali3p.hpp> <mbrt/schemes/rk4_projected.hpp>)
+  set(MBRT_MODEL_PCH ${target} PARENT_SCOPE)
+endfunction()
 
 function(mbrt_add_model target)
   cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM;WARNINGS;C_INTERFACE" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
@@ -89,5 +119,8 @@ function(mbrt_add_model target)
     mbrt_enable_warnings(${target})
   elseif(ARG_WARNINGS)
     mbrt_enable_warnings(${target} NO_ERROR)
+  endif()
+  if(MBRT_MODEL_PCH AND NOT ARG_LCM AND (MBRT_GENERATED_WARNINGS_ARE_ERRORS OR NOT ARG_WARNINGS))
+    target_precompile_headers(${target} REUSE_FROM ${MBRT_MODEL_PCH})
   endif()
 endfunction()

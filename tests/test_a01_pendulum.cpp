@@ -7,6 +7,7 @@
 // reference itself.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 

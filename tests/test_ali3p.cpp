@@ -6,6 +6,7 @@
 // of Chung and Hulbert on a linear oscillator.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 

@@ -4,6 +4,7 @@
 // the momentum by F t exactly.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "pushed_body.hpp"

@@ -19,6 +19,7 @@
 // direction against the first crank's (couplers must not rotate).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <string_view>

@@ -14,6 +14,7 @@
 // Also checked: the A03 energy balance T + V - E0 - mom (beta - beta0) = 0.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>

@@ -12,6 +12,7 @@
 //    reaches x = -1 at its turning point and comes back.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <string_view>

@@ -17,6 +17,7 @@
 // documented in docs/benchmarks.md, not tested.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>

@@ -23,6 +23,7 @@
 // to 1e-4 m and the schemes against the reference.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <string_view>

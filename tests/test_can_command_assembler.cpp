@@ -6,6 +6,8 @@
 // 16-bit sequence numbers unwrap across 65535 -> 0.
 #include <doctest/doctest.h>
 
+#include <array>
+
 #include <mbrt/rt/can_command_assembler.hpp>
 
 using mbrt::can::CommandPart;

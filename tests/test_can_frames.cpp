@@ -7,6 +7,7 @@
 // kind, a remote frame, an unknown or extended ID.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 

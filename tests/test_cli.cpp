@@ -2,6 +2,7 @@
 // CSV and JSON outputs, the compile cache, and its errors.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -258,4 +259,28 @@ TEST_CASE("mbrt hil refuses an IPv6 LCM group, saying that LCM's udpm provider i
     CHECK(r.exit_code == 1);
     CHECK(r.err.find("cannot open LCM at '" + url + "': LCM's udpm provider is IPv4-only") != std::string::npos);
   }
+}
+
+TEST_CASE("sim --set drives a tunable driver with the coefficient set, and refuses one that leaves the initial rate") {
+  // theta(t) = c1 t + 0.5 t^2 with c1 = 2 and the rotor's initial rate 2: at t = 1, theta = 2.5 rad.
+  const fs::path csv = fs::path(MBRT_TEST_WORK_DIR) / "driven.csv";
+  const Run r = mbrt("sim " + model("tunable_driven_pair.yaml") + " --t-end 1 --every 1000 --out '" + csv.string() +
+                     "' --set spin.function.c1=2 --set rotor.angular_velocity.z=2");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::vector<std::string> rows = lines(csv);
+  REQUIRE(rows.size() == 3);  // header, t = 0 and t = 1
+  REQUIRE(rows[0].rfind("t,rotor.x,rotor.y,rotor.z,rotor.e0,rotor.e1,rotor.e2,rotor.e3,", 0) == 0);
+  std::vector<double> v;
+  std::stringstream row(rows[2]);
+  for (std::string x; std::getline(row, x, ',');) v.push_back(std::stod(x));
+  REQUIRE(v.size() > 7);
+  CHECK(v[0] == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(std::abs(v[4] - std::cos(1.25)) < 1e-9);  // Euler parameters of 2.5 rad about z
+  CHECK(std::abs(v[7] - std::sin(1.25)) < 1e-9);
+
+  const Run off = mbrt("sim " + model("tunable_driven_pair.yaml") + " --t-end 0.01 --set spin.function.c1=2");
+  CHECK(off.exit_code == 2);
+  CHECK(off.err.find("violates the joints") != std::string::npos);
+  CHECK(off.err.find("velocity 1,") != std::string::npos);  // the rotor's rate 1 against f'(0) = 2
 }

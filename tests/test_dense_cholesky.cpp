@@ -1,9 +1,10 @@
 // Independent tests of dense_cholesky.hpp against Eigen's LLT, for N = 1..6.
+// The references (Eigen's QR and LLT) work on dynamic-size matrices, so they
+// are compiled once rather than once per N; the code under test is fixed-size.
 #include <doctest/doctest.h>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <algorithm>
 #include <random>
 #include <vector>
@@ -14,21 +15,28 @@ namespace {
 
 template <int R, int C>
 using Matrix = Eigen::Matrix<double, R, C>;
+using Eigen::MatrixXd;
 
 class Random {
  public:
   explicit Random(unsigned seed) : gen_(seed) {}
   template <int R, int C>
   Matrix<R, C> matrix() {
-    Matrix<R, C> m;
-    for (int i = 0; i < R; ++i)
-      for (int j = 0; j < C; ++j) m(i, j) = std::uniform_real_distribution<double>(-1.0, 1.0)(gen_);
+    return matrix(R, C);
+  }
+  MatrixXd matrix(int rows, int cols) {
+    MatrixXd m(rows, cols);
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; j < cols; ++j) m(i, j) = std::uniform_real_distribution<double>(-1.0, 1.0)(gen_);
     return m;
   }
   // Random orthogonal matrix from the QR factorization of a random matrix.
   template <int N>
   Matrix<N, N> orthogonal() {
-    return Eigen::HouseholderQR<Matrix<N, N>>(matrix<N, N>()).householderQ() * Matrix<N, N>::Identity();
+    return orthogonal(N);
+  }
+  MatrixXd orthogonal(int n) {
+    return Eigen::HouseholderQR<MatrixXd>(matrix(n, n)).householderQ() * MatrixXd::Identity(n, n);
   }
 
  private:
@@ -36,11 +44,15 @@ class Random {
 };
 
 // Symmetric positive definite with eigenvalues in [0.1, 2.1] scaled by `scale`.
+MatrixXd random_spd(Random& rnd, int n, double scale) {
+  const MatrixXd Q = rnd.orthogonal(n);
+  const Eigen::VectorXd lambda = (rnd.matrix(n, 1).array() + 1.1).matrix() * scale;
+  return Q * lambda.asDiagonal() * Q.transpose();
+}
+
 template <int N>
 Matrix<N, N> random_spd(Random& rnd, double scale) {
-  const Matrix<N, N> Q = rnd.orthogonal<N>();
-  Matrix<N, 1> lambda = (rnd.matrix<N, 1>().array() + 1.1).matrix() * scale;
-  return Q * lambda.asDiagonal() * Q.transpose();
+  return random_spd(rnd, N, scale);
 }
 
 template <int N>
@@ -57,7 +69,7 @@ void check_factor_and_solves(Random& rnd) {
     Matrix<N, N> F = A;
     REQUIRE(mbrt::cholesky_in_place<N>(F));
     const Matrix<N, N> L = lower_of<N>(F);
-    const Eigen::LLT<Matrix<N, N>> llt(A);
+    const Eigen::LLT<MatrixXd> llt(A);
     REQUIRE(llt.info() == Eigen::Success);
     const double tol = 1e-13 * scale;
 

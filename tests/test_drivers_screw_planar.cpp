@@ -3,6 +3,8 @@
 // mechanics.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <Eigen/Dense>

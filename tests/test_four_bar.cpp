@@ -3,6 +3,7 @@
 // work, so energy is held.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "four_bar.hpp"

@@ -3,6 +3,7 @@
 // violations, and second-order convergence on the heavy top.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <vector>

@@ -4,6 +4,7 @@
 // reaction, and energy over a long conservative roll.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 

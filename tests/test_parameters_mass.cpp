@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "allocation_counter.hpp"

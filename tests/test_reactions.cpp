@@ -4,6 +4,7 @@
 // bracket whose reaction follows from statics, the same in every scheme.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 

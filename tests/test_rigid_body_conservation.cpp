@@ -3,6 +3,7 @@
 // heavy top's closed-form nutation (Lagrange top, integrable).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "free_body.hpp"

@@ -4,6 +4,7 @@
 // origin, gravity -g z), checked against closed forms and conservation laws.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -96,7 +97,7 @@ struct Pendulum {
     s.particle[0].r += kStep * s.particle[0].v;
     s.t += kStep;
   }
-  static void constraint_rows(const Kinematics& k, double, ConstraintSystem& c) noexcept {
+  static void constraint_rows(const Kinematics& k, const State&, ConstraintSystem& c) noexcept {
     c.phi = 0.5 * (k.r.squaredNorm() - kLength * kLength);
     c.quad = k.vel.squaredNorm();
     c.b << k.r, mbrt::Vec3::Zero();
@@ -146,7 +147,7 @@ State released(double theta0) {
   s.particle[0].v.setZero();
   Workspace w;
   M::kinematics(s, w.k);
-  M::constraint_rows(w.k, s.t, w.c);
+  M::constraint_rows(w.k, s, w.c);
   M::factorize(w.c);
   M::applied_loads(w.k, s, w.l);
   M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);

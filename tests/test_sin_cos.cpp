@@ -2,6 +2,7 @@
 // the angles a joint reaches, and exact where the reduction leaves r = 0.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 

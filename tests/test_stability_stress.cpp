@@ -7,6 +7,7 @@
 // here from the body states and the model files' masses and inertias.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 

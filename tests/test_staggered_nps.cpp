@@ -4,6 +4,7 @@
 // convergence on the heavy top.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <vector>

@@ -4,6 +4,7 @@
 // at the origin about y, gravity -g z): q'' = -(g / L) sin q.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>

@@ -208,16 +208,7 @@ void Emitter::frame_constants(std::ostringstream& o) const {
     o << "const mbrt::JointFrame " << jname(j) << "_frame{" << vec3(axes(f.s1)) << ", " << vec3(axes(f.s2)) << ",\n    "
       << vec3(axes(f.a1)) << ", " << vec3(axes(f.b1)) << ", " << vec3(axes(f.c1)) << ",\n    " << vec3(axes(f.a2)) << ", " << vec3(axes(f.b2))
       << ", " << vec3(axes(f.c2)) << ", " << num(f.length) << ", " << num(f.pitch) << "};\n";
-    if (const TimeFunction* fn = block(j).function) {
-      if (fn->is_sine) {
-        o << "const mbrt::Sine " << jname(j) << "_sine{" << num(fn->amplitude) << ", " << num(fn->omega) << ", "
-          << num(fn->phase) << ", " << num(fn->offset) << "};  // offset + amplitude sin(omega t + phase)\n";
-      } else {
-        o << "constexpr std::array<double, " << fn->polynomial.size() << "> " << jname(j) << "_polynomial{";
-        for (size_t k = 0; k < fn->polynomial.size(); ++k) o << (k ? ", " : "") << num(fn->polynomial[k]);
-        o << "};  // c0 + c1 t + ...\n";
-      }
-    }
+    if (block(j).function) driver_function_constant(o, block(j));
   }
   if (has_inputs()) o << "\n// Input axes (body-1 axes) and, for forces, points (body axes).\n";
   for (size_t i = 0; i < m_.inputs.size(); ++i) {
@@ -514,17 +505,14 @@ void Emitter::joint_spring_load(std::ostringstream& o, const Force& f, const std
 }
 
 void Emitter::constraint_stage(std::ostringstream& o) const {
-  o << "// (k, t) => (c.*.rows): constraint values, Jacobians and acceleration terms.\n"
-    << "static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {\n";
+  o << "// (k, s.t, s.params) => (c.*.rows): constraint values, Jacobians and acceleration terms.\n"
+    << "static void constraint_rows(const Kinematics& k, [[maybe_unused]] const State& s, ConstraintSystem& c) noexcept {\n";
   if (blocks() == 0) o << "  (void)k;\n  (void)c;\n";
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& b = block(j);
     o << "  " << rows_of(j) << " = mbrt::" << b.kernel << "(" << b.name << "_frame, " << motion(b.body1) << ", "
       << motion(b.body2);
-    if (b.function) {
-      o << ",\n      " << (b.function->is_sine ? "mbrt::sine(" + b.name + "_sine, t)"
-                                                : "mbrt::polynomial(" + b.name + "_polynomial, t)");
-    }
+    if (b.function) o << ",\n      " << driver_function_value(b);
     o << ");\n";
   }
   o << "}\n\n";
@@ -796,7 +784,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
   }
   const bool ali3p = scheme_kind() == Scheme::ali3p;
   const bool nps = scheme_kind() == Scheme::staggered_nps;
-  o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n";
+  o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s, c);\n";
   if (nps) {
     o << "  TreeSystem t;\n  factorize_tree(" << mass_argument() << "k, c, t);\n" << (nps_cuts() ? "  factorize_cut(c, t);\n" : "");
   } else {
@@ -842,7 +830,7 @@ static mbrt::ConstraintViolation constraint_violation(const State& )" << (tree_s
 )" << (tree_scheme() ? "  State s = given;\n  set_multipliers(s);\n" : "") << R"(  Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   const Rows phi = stacked_phi(c);
   const Rows phi_dot = velocity_residual(c, generalized_velocities(s));
   BodyVectors a = accelerations_of(s);
@@ -960,7 +948,7 @@ void Emitter::reactions_function(std::ostringstream& o) const {
     o << "// (s) => (s.rigid_acceleration, s.lambda): what the joint coordinates imply,\n"
       << "// from the index-1 multipliers S lambda = B M^-1 F + quad.\n"
       << "static void set_multipliers(State& s) noexcept {\n"
-      << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n  factorize(" << mass_argument() << "c);\n"
+      << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s, c);\n  factorize(" << mass_argument() << "c);\n"
       << "  Loads l;\n  applied_loads(k, s, l);\n  constraint_forces(c, l, stacked_phi(c), s);\n}\n\n";
   }
   o << "static void reactions(const State& " << (tree_scheme() ? "given" : "s") << ", Reactions& r) noexcept {\n";
@@ -969,7 +957,7 @@ void Emitter::reactions_function(std::ostringstream& o) const {
     o << "  (void)s;\n  (void)r;\n}\n\n";
     return;
   }
-  o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s.t, c);\n";
+  o << "  Kinematics k;\n  kinematics(s, k);\n  ConstraintSystem c;\n  constraint_rows(k, s, c);\n";
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& b = block(j);
     const bool on_body2 = b.body2 != kGround;

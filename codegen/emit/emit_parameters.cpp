@@ -6,6 +6,12 @@
 
 namespace mbrt::codegen {
 
+namespace {
+
+std::string function_name(const ConstraintBlock& b) { return b.name + (b.function->is_sine ? "_sine" : "_polynomial"); }
+
+}  // namespace
+
 const Parameter* Emitter::tunable(ParameterTarget target, int index, int component) const {
   const auto it = std::find_if(params_.begin(), params_.end(), [&](const Parameter& p) {
     return p.target == target && p.index == index && p.component == component;
@@ -113,6 +119,43 @@ void Emitter::spring_constant(std::ostringstream& o, const Force& f, const Force
   } else {
     o << "const " << type << " " << n << "{" << init << "};  // " << comment << "\n";
   }
+}
+
+bool Emitter::tunable_driver(int driver) const {
+  return std::any_of(params_.begin(), params_.end(), [&](const Parameter& p) {
+    return p.target == ParameterTarget::driver_coefficient && p.index == driver;
+  });
+}
+
+void Emitter::driver_function_constant(std::ostringstream& o, const ConstraintBlock& b) const {
+  const TimeFunction& fn = *b.function;
+  const auto coefficient = [&](int k, double folded) {
+    return value_of(ParameterTarget::driver_coefficient, b.driver, k, folded, "p");
+  };
+  std::string type, values, comment;
+  if (fn.is_sine) {
+    type = "mbrt::Sine";
+    values = coefficient(0, fn.amplitude) + ", " + coefficient(1, fn.omega) + ", " + coefficient(2, fn.phase) + ", " +
+             coefficient(3, fn.offset);
+    comment = "offset + amplitude sin(omega t + phase)";
+  } else {
+    type = "std::array<double, " + std::to_string(fn.polynomial.size()) + ">";
+    for (size_t k = 0; k < fn.polynomial.size(); ++k) {
+      values += (k ? ", " : "") + coefficient(static_cast<int>(k), fn.polynomial[k]);
+    }
+    comment = "c0 + c1 t + ...";
+  }
+  const std::string n = function_name(b);
+  if (tunable_driver(b.driver)) {
+    o << type << " " << n << "(const Parameters& p) noexcept { return {" << values << "}; }  // " << comment << "\n";
+  } else {
+    o << (fn.is_sine ? "const " : "constexpr ") << type << " " << n << "{" << values << "};  // " << comment << "\n";
+  }
+}
+
+std::string Emitter::driver_function_value(const ConstraintBlock& b) const {
+  return std::string(b.function->is_sine ? "mbrt::sine(" : "mbrt::polynomial(") + function_name(b) +
+         (tunable_driver(b.driver) ? "(s.params)" : "") + ", s.t)";
 }
 
 }  // namespace mbrt::codegen

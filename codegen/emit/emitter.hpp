@@ -183,6 +183,12 @@ class Emitter {
   void gravity_constant(std::ostringstream& o) const;
   void mass_constant(std::ostringstream& o, int i) const;
   void spring_constant(std::ostringstream& o, const Force& f, const ForcePlan& p, const std::string& n) const;
+  bool tunable_driver(int driver) const;
+  // A driver block's function of time: its constant NAME_sine or NAME_polynomial,
+  // or a function of the parameters where its coefficients are tunable ...
+  void driver_function_constant(std::ostringstream& o, const ConstraintBlock& b) const;
+  // ... and its value and derivatives at s.t in constraint_rows.
+  std::string driver_function_value(const ConstraintBlock& b) const;
   std::string motion(int i) const {
     if (i == kGround) return "mbrt::" + type("BodyMotion") + "{kGroundPose, kGroundVelocity}";
     return "mbrt::" + type("BodyMotion") + "{k.pose" + at(i) + ", k.vel" + at(i) + "}";

@@ -8,6 +8,8 @@ namespace {
 
 const char* const kAxes[] = {"x", "y", "z"};
 const char* const kDiagonal[] = {"xx", "yy", "zz"};
+// The components of a sine driver in the order of mbrt::Sine.
+const char* const kSine[] = {"amplitude", "omega", "phase", "offset"};
 
 bool diagonal(const Eigen::Matrix3d& j) { return j == Eigen::Matrix3d(j.diagonal().asDiagonal()); }
 
@@ -48,14 +50,30 @@ std::vector<Parameter> candidates(const Model& model) {
     out.push_back({prefix + (joint ? "rest" : "rest_length"), ParameterTarget::spring_rest, n, 0,
                    joint ? f.rest : f.rest_length, {}, {}});
   }
+  for (size_t i = 0; i < model.drivers.size(); ++i) {
+    const Driver& d = model.drivers[i];
+    const TimeFunction& f = d.function;
+    const int n = static_cast<int>(i);
+    const std::string prefix = d.name + ".function.";
+    if (f.is_sine) {
+      const double values[] = {f.amplitude, f.omega, f.phase, f.offset};
+      for (int k = 0; k < 4; ++k) out.push_back({prefix + kSine[k], ParameterTarget::driver_coefficient, n, k, values[k], {}, {}});
+    } else {
+      for (size_t k = 0; k < f.polynomial.size(); ++k) {
+        out.push_back({prefix + "c" + std::to_string(k), ParameterTarget::driver_coefficient, n, static_cast<int>(k),
+                       f.polynomial[k], {}, {}});
+      }
+    }
+  }
   return out;
 }
 
 std::string keys_help(const Model& model) {
   return "tunable keys are gravity (when the model has it), BODY.mass, BODY.inertia (a diagonal one), BODY.position, "
          "BODY.velocity, BODY.angular_velocity, JOINT.coordinate and JOINT.rate (a revolute or prismatic joint, in "
-         "the tree schemes), JOINT.spring (of a joint_spring), forces.N (a spring_damper, N its index in forces) or "
-         "one component of them, e.g. " +
+         "the tree schemes), JOINT.spring (of a joint_spring), forces.N (a spring_damper, N its index in forces), "
+         "DRIVER.function (c0, c1, ... of a polynomial, amplitude, omega, phase, offset of a sine) or one component "
+         "of them, e.g. " +
          (model.bodies.empty() ? std::string("body.mass") : model.bodies.front().name + ".position.x");
 }
 

@@ -21,13 +21,15 @@ enum class ParameterTarget {
   spring_rest,             // index: force (rest_length or rest)
   joint_coordinate,        // index: joint (revolute, prismatic); initial state of the tree schemes
   joint_rate,              // index: joint; initial state of the tree schemes
+  driver_coefficient,      // index: driver; component: polynomial c0, c1, ... or sine amplitude, omega, phase, offset
 };
 
 struct Parameter {
-  std::string name;  // "upper_arm.mass", "gravity.z", "pin.spring.stiffness", "forces.0.rest_length", "pin.coordinate"
+  std::string name;  // "upper_arm.mass", "gravity.z", "pin.spring.stiffness", "forces.0.rest_length", "pin.coordinate",
+                     // "motor.function.c1"
   ParameterTarget target = ParameterTarget::gravity;
-  int index = -1;      // Model::bodies, Model::forces or Model::joints
-  int component = 0;   // of a vector or of an inertia's diagonal
+  int index = -1;      // Model::bodies, Model::forces, Model::joints or Model::drivers
+  int component = 0;   // of a vector, of an inertia's diagonal or of a driver's function
   double value = 0.0;  // the model file's value: the default
   SourceLocation where;  // the `tunable:` entry that marked it
   std::string entry;     // that entry as written

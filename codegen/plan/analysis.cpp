@@ -284,6 +284,7 @@ std::vector<ConstraintBlock> constraint_blocks(const Model& model) {
                           .first_row = rows,
                           .frame = {},
                           .function = &d.function,
+                          .driver = static_cast<int>(i),
                           .holonomic_rows = type.rows};
     if (d.type == DriverType::distance) {
       block.frame.s1 = body_point(model, d.body1, d.point1, d.where, key + ".point1");
@@ -407,7 +408,8 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
       case ParameterTarget::spring_stiffness:
       case ParameterTarget::spring_rest:
       case ParameterTarget::joint_coordinate:
-      case ParameterTarget::joint_rate: break;
+      case ParameterTarget::joint_rate:
+      case ParameterTarget::driver_coefficient: break;
     }
   }
   // A tunable inertia may lose its isotropy: its gyroscopic torque is a load

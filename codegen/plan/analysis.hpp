@@ -44,6 +44,7 @@ struct ConstraintBlock {
   int first_row;        // offset in the stacked multiplier vector
   mbrt::JointFrame frame;
   const TimeFunction* function = nullptr;  // drivers only (points into the Model)
+  int driver = -1;                         // drivers only: Model::drivers index
   int holonomic_rows = 0;  // the first rows; the rest act on velocities only (rolling_disk, knife_edge)
   std::vector<int> spatial_rows = {};  // planar blocks: the rows of the spatial block they are, in order
 };

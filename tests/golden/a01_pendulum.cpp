@@ -87,8 +87,8 @@ static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, 
   l.w[body::bob].f += bob_weight;
 }
 
-// (k, t) => (c.*.rows): constraint values, Jacobians and acceleration terms.
-static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {
+// (k, s.t, s.params) => (c.*.rows): constraint values, Jacobians and acceleration terms.
+static void constraint_rows(const Kinematics& k, [[maybe_unused]] const State& s, ConstraintSystem& c) noexcept {
   c.bar.rows = mbrt::distance(bar_frame, mbrt::BodyMotion{kGroundPose, kGroundVelocity}, mbrt::BodyMotion{k.pose[body::bob], k.vel[body::bob]});
 }
 
@@ -178,7 +178,7 @@ static State initial_state() noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   factorize(c);
   Loads l;
   applied_loads(k, s, l);
@@ -202,7 +202,7 @@ static mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   const Rows phi = stacked_phi(c);
   const Rows phi_dot = velocity_residual(c, generalized_velocities(s));
   BodyVectors a = accelerations_of(s);
@@ -221,7 +221,7 @@ static void reactions(const State& s, Reactions& r) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   r[constraint::bar] = mbrt::joint_reaction(-(c.bar.rows.J2.transpose() * s.lambda.segment<1>(0)), k.pose[body::bob],
       k.pose[body::bob].r + k.pose[body::bob].R * bar_frame.s2, 1.0, kGroundPose, bar_frame);
 }
@@ -300,8 +300,8 @@ static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, 
   l.w[body::bob].f += bob_weight;
 }
 
-// (k, t) => (c.*.rows): constraint values, Jacobians and acceleration terms.
-static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {
+// (k, s.t, s.params) => (c.*.rows): constraint values, Jacobians and acceleration terms.
+static void constraint_rows(const Kinematics& k, [[maybe_unused]] const State& s, ConstraintSystem& c) noexcept {
   c.bar.rows = mbrt::planar_distance(bar_frame, mbrt::PlanarMotion{kGroundPose, kGroundVelocity}, mbrt::PlanarMotion{k.pose[body::bob], k.vel[body::bob]});
 }
 

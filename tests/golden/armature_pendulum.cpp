@@ -98,8 +98,8 @@ static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, 
   l.w[body::rod].tau += mbrt::gyroscopic_torque(rod_mass, k.vel[body::rod].w);
 }
 
-// (k, t) => (c.*.rows): constraint values, Jacobians and acceleration terms.
-static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {
+// (k, s.t, s.params) => (c.*.rows): constraint values, Jacobians and acceleration terms.
+static void constraint_rows(const Kinematics& k, [[maybe_unused]] const State& s, ConstraintSystem& c) noexcept {
   c.pin.rows = mbrt::revolute(pin_frame, mbrt::BodyMotion{kGroundPose, kGroundVelocity}, mbrt::BodyMotion{k.pose[body::rod], k.vel[body::rod]});
 }
 
@@ -272,7 +272,7 @@ static mbrt::ConstraintViolation constraint_violation(const State& given) noexce
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   const Rows phi = stacked_phi(c);
   const Rows phi_dot = velocity_residual(c, generalized_velocities(s));
   BodyVectors a = accelerations_of(s);
@@ -293,7 +293,7 @@ static void set_multipliers(State& s) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   factorize(c);
   Loads l;
   applied_loads(k, s, l);
@@ -306,7 +306,7 @@ static void reactions(const State& given, Reactions& r) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   r[constraint::pin] = mbrt::joint_reaction(-(c.pin.rows.J2.transpose() * s.lambda.segment<5>(0)), k.pose[body::rod],
       k.pose[body::rod].r + k.pose[body::rod].R * pin_frame.s2, 1.0, kGroundPose, pin_frame);
 }

@@ -114,8 +114,8 @@ static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, 
   l.w[body::rocker].f += rocker_weight;
 }
 
-// (k, t) => (c.*.rows): constraint values, Jacobians and acceleration terms.
-static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {
+// (k, s.t, s.params) => (c.*.rows): constraint values, Jacobians and acceleration terms.
+static void constraint_rows(const Kinematics& k, [[maybe_unused]] const State& s, ConstraintSystem& c) noexcept {
   c.pin_o.rows = mbrt::revolute(pin_o_frame, mbrt::BodyMotion{kGroundPose, kGroundVelocity}, mbrt::BodyMotion{k.pose[body::crank], k.vel[body::crank]});
   c.pin_a.rows = mbrt::revolute(pin_a_frame, mbrt::BodyMotion{k.pose[body::crank], k.vel[body::crank]}, mbrt::BodyMotion{k.pose[body::coupler], k.vel[body::coupler]});
   c.pin_b.rows = mbrt::revolute(pin_b_frame, mbrt::BodyMotion{k.pose[body::coupler], k.vel[body::coupler]}, mbrt::BodyMotion{k.pose[body::rocker], k.vel[body::rocker]});
@@ -301,7 +301,7 @@ static State initial_state() noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   factorize(c);
   Loads l;
   applied_loads(k, s, l);
@@ -329,7 +329,7 @@ static mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   const Rows phi = stacked_phi(c);
   const Rows phi_dot = velocity_residual(c, generalized_velocities(s));
   BodyVectors a = accelerations_of(s);
@@ -350,7 +350,7 @@ static void reactions(const State& s, Reactions& r) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   r[constraint::pin_o] = mbrt::joint_reaction(-(c.pin_o.rows.J2.transpose() * s.lambda.segment<5>(0)), k.pose[body::crank],
       k.pose[body::crank].r + k.pose[body::crank].R * pin_o_frame.s2, 1.0, kGroundPose, pin_o_frame);
   r[constraint::pin_a] = mbrt::joint_reaction(-(c.pin_a.rows.J2.transpose() * s.lambda.segment<5>(5)), k.pose[body::coupler],
@@ -454,8 +454,8 @@ static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, 
   l.w[body::rocker].f += rocker_weight;
 }
 
-// (k, t) => (c.*.rows): constraint values, Jacobians and acceleration terms.
-static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {
+// (k, s.t, s.params) => (c.*.rows): constraint values, Jacobians and acceleration terms.
+static void constraint_rows(const Kinematics& k, [[maybe_unused]] const State& s, ConstraintSystem& c) noexcept {
   c.pin_o.rows = mbrt::planar_revolute(pin_o_frame, mbrt::PlanarMotion{kGroundPose, kGroundVelocity}, mbrt::PlanarMotion{k.pose[body::crank], k.vel[body::crank]});
   c.pin_a.rows = mbrt::planar_revolute(pin_a_frame, mbrt::PlanarMotion{k.pose[body::crank], k.vel[body::crank]}, mbrt::PlanarMotion{k.pose[body::coupler], k.vel[body::coupler]});
   c.pin_b.rows = mbrt::planar_revolute(pin_b_frame, mbrt::PlanarMotion{k.pose[body::coupler], k.vel[body::coupler]}, mbrt::PlanarMotion{k.pose[body::rocker], k.vel[body::rocker]});

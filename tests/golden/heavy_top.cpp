@@ -99,8 +99,8 @@ static void applied_loads([[maybe_unused]] const Kinematics& k, const State& s, 
   l.w[body::top].f += top_weight;
 }
 
-// (k, t) => (c.*.rows): constraint values, Jacobians and acceleration terms.
-static void constraint_rows(const Kinematics& k, [[maybe_unused]] double t, ConstraintSystem& c) noexcept {
+// (k, s.t, s.params) => (c.*.rows): constraint values, Jacobians and acceleration terms.
+static void constraint_rows(const Kinematics& k, [[maybe_unused]] const State& s, ConstraintSystem& c) noexcept {
   c.tip.rows = mbrt::spherical(tip_frame, mbrt::BodyMotion{kGroundPose, kGroundVelocity}, mbrt::BodyMotion{k.pose[body::top], k.vel[body::top]});
 }
 
@@ -244,7 +244,7 @@ static State initial_state() noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   factorize(c);
   Loads l;
   applied_loads(k, s, l);
@@ -268,7 +268,7 @@ static mbrt::ConstraintViolation constraint_violation(const State& s) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   const Rows phi = stacked_phi(c);
   const Rows phi_dot = velocity_residual(c, generalized_velocities(s));
   BodyVectors a = accelerations_of(s);
@@ -289,7 +289,7 @@ static void reactions(const State& s, Reactions& r) noexcept {
   Kinematics k;
   kinematics(s, k);
   ConstraintSystem c;
-  constraint_rows(k, s.t, c);
+  constraint_rows(k, s, c);
   r[constraint::tip] = mbrt::joint_reaction(-(c.tip.rows.J2.transpose() * s.lambda.segment<3>(0)), k.pose[body::top],
       k.pose[body::top].r + k.pose[body::top].R * tip_frame.s2, 1.0, kGroundPose, tip_frame);
 }

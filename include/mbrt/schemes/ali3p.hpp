@@ -102,7 +102,7 @@ StepStatus ali3p_step(typename M::State& s, typename M::Workspace& w) noexcept {
   for (int i = 0; i < M::kNewtonIterations; ++i) {
     M::newmark_update(n, u_n, a_n, a, s, u);
     M::kinematics(s, w.k);
-    M::constraint_rows(w.k, s.t, w.c);
+    M::constraint_rows(w.k, s, w.c);
     const Rows phi = M::stacked_phi(w.c);
     if (i > 0) lambda_star += M::kAlpha.cwiseProduct(phi);
     M::applied_loads(w.k, s, w.l);
@@ -118,7 +118,7 @@ StepStatus ali3p_step(typename M::State& s, typename M::Workspace& w) noexcept {
   // the dynamic part of the constraint forces and the next step's start.
   M::newmark_update(n, u_n, a_n, a, s, u);
   M::kinematics(s, w.k);
-  M::constraint_rows(w.k, s.t, w.c);
+  M::constraint_rows(w.k, s, w.c);
   s.lambda = lambda_star + M::kAlpha.cwiseProduct(M::stacked_phi(w.c));
   s.ali3p_lambda_star = s.lambda;
   if constexpr (M::kWeighted) {
@@ -136,7 +136,7 @@ StepStatus ali3p_step(typename M::State& s, typename M::Workspace& w) noexcept {
   }
   M::set_velocities(u, s);
   w.k.vel = M::velocities_of(s);
-  M::constraint_rows(w.k, s.t, w.c);
+  M::constraint_rows(w.k, s, w.c);
   M::project(w.c, M::stacked_quad(w.c), a);
   M::set_accelerations(a, s);
   s.lambda = newton_multipliers<M>(a, s, w);

@@ -30,7 +30,7 @@ namespace mbrt::schemes {
 template <class M>
 bool rk4_projected_evaluate(typename M::State& s, typename M::Workspace& w) noexcept {
   M::kinematics(s, w.k);
-  M::constraint_rows(w.k, s.t, w.c);
+  M::constraint_rows(w.k, s, w.c);
   const bool positive = factorize_system<M>(s, w.c);
   M::applied_loads(w.k, s, w.l);
   M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);
@@ -117,16 +117,16 @@ StepStatus rk4_projected_step(typename M::State& s, typename M::Workspace& w) no
   // factorized where it is applied; then the accelerations at the result.
   for (int i = 0; i < M::kCorrections; ++i) {
     M::kinematics(s, w.k);
-    M::constraint_rows(w.k, s.t, w.c);
+    M::constraint_rows(w.k, s, w.c);
     positive = factorize_system<M>(s, w.c) && positive;
     M::correct_positions(w.c, s);
   }
   M::kinematics(s, w.k);
-  M::constraint_rows(w.k, s.t, w.c);
+  M::constraint_rows(w.k, s, w.c);
   positive = factorize_system<M>(s, w.c) && positive;
   correct_velocities<M>(w.c, s);
   w.k.vel = M::velocities_of(s);
-  M::constraint_rows(w.k, s.t, w.c);  // the acceleration terms at the projected velocities
+  M::constraint_rows(w.k, s, w.c);  // the acceleration terms at the projected velocities
   M::applied_loads(w.k, s, w.l);
   M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);
 

@@ -116,7 +116,7 @@ void position_stage(typename M::BodyVectors& u_kick, typename M::State& s, typen
     M::set_velocities(u_kick, s);
     M::drift(s);
     M::kinematics(s, w.k);
-    if (i + 1 < M::kPositionIterations) M::constraint_rows(w.k, s.t, w.c);
+    if (i + 1 < M::kPositionIterations) M::constraint_rows(w.k, s, w.c);
   }
 }
 
@@ -161,7 +161,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
   if constexpr (M::kPositionStage) {
     // Directions of the first half kick's constraint forces, at q(t).
     M::kinematics(s, w.k);
-    M::constraint_rows(w.k, s.t, w.c0);
+    M::constraint_rows(w.k, s, w.c0);
     constraint_directions<M>(s, w.c0);
     M::kick(s);
     BodyVectors u_kick = M::generalized_velocities(s);
@@ -169,7 +169,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     // Constraint terms at the drifted positions, factorized once per step; the
     // position stage moves the positions onto the constraints and keeps the factor.
     M::kinematics(s, w.k);
-    M::constraint_rows(w.k, s.t, w.c);
+    M::constraint_rows(w.k, s, w.c);
     positive = factorize_system<M>(s, w.c);
     position_stage<M>(u_kick, s, w);
   } else {
@@ -187,7 +187,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     for (std::size_t b = 0; b < u.size(); ++b) u[b] += h * a_old[b];
     M::set_velocities(u, s);
     w.k.vel = M::velocities_of(s);
-    M::constraint_rows(w.k, s.t, w.c);
+    M::constraint_rows(w.k, s, w.c);
     if constexpr (M::kPositionStage) {
       constraint_directions<M>(s, w.c);  // the factor stays that of the first drift
     } else {
@@ -220,7 +220,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     for (std::size_t b = 0; b < u.size(); ++b) u[b] += (0.5 * h) * a_old[b];
     M::set_velocities(u, s);
     w.k.vel = M::velocities_of(s);
-    M::constraint_rows(w.k, s.t, w.c);
+    M::constraint_rows(w.k, s, w.c);
     positive = factorize_system<M>(s, w.c);
     const typename M::Rows phi = M::stacked_phi(w.c);
     // Implicit stages, fixed-point passes on u = u_half + h/2 a(t + h, u).
@@ -238,7 +238,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
       for (int i = 0; i < M::kCorrections; ++i) {
         if (i > 0) {
           M::kinematics(s, w.k);
-          M::constraint_rows(w.k, s.t, w.c);
+          M::constraint_rows(w.k, s, w.c);
           positive = factorize_system<M>(s, w.c) && positive;
         }
         M::correct_positions(w.c, s);
