@@ -17,11 +17,13 @@
 // docs/friction.md.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "allocation_counter.hpp"
+#include "friction_arm.hpp"
 #include "friction_incline.hpp"
 #include "friction_incline_tree.hpp"
 #include "friction_pendulum.hpp"
@@ -114,6 +116,52 @@ TEST_CASE("a pendulum with a friction moment turns at the angles its energy loss
   for (int i = 0; i < 2000; ++i) REQUIRE(m::step(s) == mbrt::StepStatus::ok);
   CHECK(std::abs(s.q[m::body::rod] - held) < 1e-9);
   CHECK(s.stuck[0] == 1.0);
+}
+
+// The arm's joint-space mass matrix at elbow angle q2 (the textbook
+// two-link form with the links' centres c1, c2 and own moments I1, I2).
+std::array<double, 3> arm_mass_matrix(double q2) {
+  const double m1 = 1.0, m2 = 0.8, i1 = 0.0208333, i2 = 0.0106667, l1 = 0.5, c1 = 0.25, c2 = 0.2;
+  const double m22 = i2 + m2 * c2 * c2, m12 = m22 + m2 * l1 * c2 * std::cos(q2);
+  const double m11 = i1 + m1 * c1 * c1 + m22 + m2 * (l1 * l1 + 2.0 * l1 * c2 * std::cos(q2));
+  return {m11, m12, m22};
+}
+
+TEST_CASE("two friction joints: M^-1's columns, stick below the limit, slip and dissipation above") {
+  namespace m = mbrt::models::friction_arm;
+  // Started at 0.7 rad the spring's 0.3 N m is below the elbow's 0.5 N m, and
+  // the shoulder feels no net moment: both stick, at rest.
+  m::Parameters p = m::kDefaultParameters;
+  REQUIRE(m::set_parameter(p, "elbow.coordinate", 0.7));
+  m::State s = m::initial_state(p);
+  static m::Workspace w;
+  for (int i = 0; i < 1000; ++i) REQUIRE(m::step(s, w) == mbrt::StepStatus::ok);
+  // The columns of M^-1 the step used, against the inverse of the closed-form M.
+  const auto [m11, m12, m22] = arm_mass_matrix(0.7);
+  const double det = m11 * m22 - m12 * m12;
+  const m::FrictionColumns& g = w.friction_columns;
+  CHECK(g[m::friction::shoulder][m::body::upper] == doctest::Approx(m22 / det).epsilon(1e-9));
+  CHECK(g[m::friction::shoulder][m::body::fore] == doctest::Approx(-m12 / det).epsilon(1e-9));
+  CHECK(g[m::friction::elbow][m::body::upper] == doctest::Approx(-m12 / det).epsilon(1e-9));
+  CHECK(g[m::friction::elbow][m::body::fore] == doctest::Approx(m11 / det).epsilon(1e-9));
+  CHECK(std::abs(s.qd[m::body::upper]) < 1e-12);
+  CHECK(std::abs(s.qd[m::body::fore]) < 1e-12);
+  CHECK(std::abs(s.q[m::body::fore] - 0.7) < 1e-9);
+  CHECK(s.stuck[m::friction::elbow] == 1.0);
+  CHECK(s.stuck[m::friction::shoulder] == 1.0);
+  CHECK(s.friction[m::friction::elbow] == doctest::Approx(-0.3).epsilon(1e-9));
+
+  // Started at 0, 1 N m exceeds it: the elbow slips, and the energy never grows.
+  s = m::initial_state();
+  double e = m::energy(s).total();
+  for (int i = 0; i < 1000; ++i) {
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    const double next = m::energy(s).total();
+    CHECK(next <= e + 1e-12);
+    e = next;
+  }
+  CHECK(s.q[m::body::fore] > 0.01);
+  CHECK(e < m::energy(m::initial_state()).total() - 0.01);
 }
 
 TEST_CASE("the friction step allocates nothing and takes stuck and slipping states alike") {

@@ -524,14 +524,6 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
                        std::string(mbrt::scheme_name(model.solver.scheme)) + " needs bodies hanging from ground by revolute and prismatic joints: " +
                            a.tree_frames.refusal + " (use staggered-pcst or staggered-nps)");
     }
-    for (const TreeFrame& f : a.tree_frames.frames) {
-      if (f.friction > 0.0 && f.parent != kGround) {
-        const Joint& j = model.joints[static_cast<size_t>(f.joint)];
-        throw ModelError(j.where, "joints." + j.name + ".friction",
-                         "friction in a joint between two moving bodies is not supported yet; only joints to the "
-                         "ground take it (docs/friction.md)");
-      }
-    }
   }
 
   a.step = plan_step(model, a, params);
