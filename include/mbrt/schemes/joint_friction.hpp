@@ -29,6 +29,10 @@
 #include <cstddef>
 #include <type_traits>
 
+#include <Eigen/Core>
+
+#include "mbrt/dense_cholesky.hpp"
+
 namespace mbrt::schemes {
 
 // A model's joints with friction: M::kFrictionJoints, or none where the
@@ -38,24 +42,52 @@ inline constexpr int kFrictionJointsOf = 0;
 template <class M>
 inline constexpr int kFrictionJointsOf<M, std::void_t<decltype(M::kFrictionJoints)>> = M::kFrictionJoints;
 
-// (s.q, s.qd without friction, w.half_angles of s.q) => (s.q, s.qd with the
-// friction impulses, s.friction, s.stuck, w.half_angles). Fixed work
-// whatever the joints do; allocates nothing.
+// x with x_i = 0 where mask_i = 0 and sum_k G_ik x_k = b_i where mask_i = 1,
+// G_ik = g[k][dof_i] the friction joints' block of M^-1 (positive
+// definite): the masked rows are made identity, so the work is one n x n
+// Cholesky factorization whatever the mask.
+template <class M, std::size_t n = M::kFrictionJoints>
+std::array<double, n> solve_friction_block(const typename M::FrictionColumns& g, const std::array<double, n>& mask,
+                                           const std::array<double, n>& b) noexcept {
+  constexpr int nn = static_cast<int>(n);
+  Eigen::Matrix<double, nn, nn> a;
+  Eigen::Matrix<double, nn, 1> x;
+  for (int i = 0; i < nn; ++i) {
+    const std::size_t ui = static_cast<std::size_t>(i);
+    for (int k = 0; k < nn; ++k) {
+      const std::size_t uk = static_cast<std::size_t>(k);
+      a(i, k) = mask[ui] * mask[uk] * g[uk][M::kFrictionDof[ui]] + (i == k ? 1.0 - mask[ui] : 0.0);
+    }
+    x(i) = mask[ui] * b[ui];
+  }
+  mbrt::cholesky_in_place(a);
+  mbrt::solve_lower(a, x);
+  mbrt::solve_lower_transposed(a, x);
+  std::array<double, n> out;
+  for (std::size_t i = 0; i < n; ++i) out[i] = x(static_cast<int>(i));
+  return out;
+}
+
+// (s.q, s.qd without friction, w.half_angles of s.q, w.q0 the step's start)
+// => (s.q, s.qd with the friction impulses, s.friction, s.stuck,
+// w.half_angles). Fixed work whatever the joints do; allocates nothing.
 template <class M>
 void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
   constexpr std::size_t n = M::kFrictionJoints;
   constexpr double h = M::kStep;
   auto& g = w.friction_columns;
   M::friction_response(s, w.half_angles, g);
+  const auto rate = [&](std::size_t i, const std::array<double, n>& impulse) {  // joint i's end rate
+    double v = s.qd[M::kFrictionDof[i]];
+    for (std::size_t k = 0; k < n; ++k) v += g[k][M::kFrictionDof[i]] * impulse[k];
+    return v;
+  };
   std::array<double, n> p, v, limit;  // impulses, their joints' rates, |p| bounds
   for (std::size_t i = 0; i < n; ++i) {
     limit[i] = M::kFrictionLimit[i] * h;
     p[i] = std::fmin(std::fmax(s.friction[i] * h, -limit[i]), limit[i]);  // fmax drops a NaN of a failed step
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    v[i] = s.qd[M::kFrictionDof[i]];
-    for (std::size_t k = 0; k < n; ++k) v[i] += g[k][M::kFrictionDof[i]] * p[k];
-  }
+  for (std::size_t i = 0; i < n; ++i) v[i] = rate(i, p);
   for (int sweep = 0; sweep < M::kFrictionSweeps; ++sweep) {
     for (std::size_t i = 0; i < n; ++i) {
       const double next = std::fmin(std::fmax(p[i] - v[i] / g[i][M::kFrictionDof[i]], -limit[i]), limit[i]);
@@ -64,11 +96,43 @@ void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
       for (std::size_t k = 0; k < n; ++k) v[k] += g[i][M::kFrictionDof[k]] * change;
     }
   }
+  // The sweeps converge slowly where joints are strongly coupled; with the
+  // stick/slip split they found, one exact solve on the stuck joints (slipping
+  // ones at their limits) stops them to round-off, then the bounds again.
+  std::array<double, n> stuck, minus_rate;
+  for (std::size_t i = 0; i < n; ++i) {
+    stuck[i] = std::abs(p[i]) < limit[i] ? 1.0 : 0.0;
+    minus_rate[i] = -rate(i, p);
+  }
+  const std::array<double, n> to_stop = solve_friction_block<M>(g, stuck, minus_rate);
+  for (std::size_t i = 0; i < n; ++i) p[i] = std::fmin(std::fmax(p[i] + to_stop[i], -limit[i]), limit[i]);
+
+  // Positions: the impulse as a force p / h over the step moves them by
+  // h/2 G p. A joint stuck at the step's start and at its end is instead
+  // held where it was (w.q0): the smooth step's displacement there is h/2
+  // of its end rate only up to O(h^3), which would let a stuck joint creep.
+  std::array<double, n> r, hold, miss;  // position impulses (dq = G r); 1 where held; held joints' offsets
+  for (std::size_t i = 0; i < n; ++i) {
+    r[i] = (0.5 * h) * p[i];
+    hold[i] = s.stuck[i] * (std::abs(p[i]) < limit[i] ? 1.0 : 0.0);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t dof = M::kFrictionDof[i];
+    double q = s.q[dof];
+    for (std::size_t k = 0; k < n; ++k) q += g[k][dof] * r[k];
+    miss[i] = w.q0[dof] - q;
+  }
+  const std::array<double, n> to_hold = solve_friction_block<M>(g, hold, miss);
+  for (std::size_t i = 0; i < n; ++i) r[i] += to_hold[i];
+
   for (std::size_t j = 0; j < s.qd.size(); ++j) {
-    double dv = 0.0;
-    for (std::size_t k = 0; k < n; ++k) dv += g[k][j] * p[k];
+    double dv = 0.0, dq = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      dv += g[k][j] * p[k];
+      dq += g[k][j] * r[k];
+    }
     s.qd[j] += dv;
-    s.q[j] += (0.5 * h) * dv;
+    s.q[j] += dq;
   }
   for (std::size_t i = 0; i < n; ++i) {
     s.friction[i] = p[i] / h;
