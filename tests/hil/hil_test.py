@@ -11,8 +11,11 @@ _failures = []
 
 
 def environment(work):
+    """The programs' environment: their compile cache is $MBRT_TEST_CACHE_DIR
+    where the test sets one (the HIL tests share one, so each program is
+    compiled once for all of them), else WORK/cache."""
     os.makedirs(work, exist_ok=True)
-    return dict(os.environ, MBRT_CACHE_DIR=os.path.join(work, "cache"))
+    return dict(os.environ, MBRT_CACHE_DIR=os.environ.get("MBRT_TEST_CACHE_DIR") or os.path.join(work, "cache"))
 
 
 def compile_programs(mbrt, model, env, link=("--lcm", LCM_URL)):
