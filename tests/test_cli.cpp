@@ -82,6 +82,27 @@ TEST_CASE("mbrt sim writes the CSV trajectory and ends with a JSON summary") {
   CHECK(rows[1].rfind("0,-1,0,0,0,0,0", 0) == 0);
 }
 
+TEST_CASE("mbrt sim --reactions adds each friction joint's torque and stick state") {
+  // The pendulum with 0.2 N m of friction sticks for good within 8 s (docs/friction.md).
+  const fs::path csv = fs::path(MBRT_TEST_WORK_DIR) / "friction.csv";
+  const Run r = mbrt("sim " + model("friction_pendulum.yaml") + " --t-end 8 --every 1000 --reactions --out '" +
+                     csv.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::vector<std::string> rows = lines(csv);
+  REQUIRE(rows.size() == 1 + 9);
+  const std::string tail = ",pin.fx,pin.fy,pin.fz,pin.tx,pin.ty,pin.tz,pin.friction,pin.stuck";
+  CHECK(rows[0].size() > tail.size());
+  CHECK(rows[0].substr(rows[0].size() - tail.size()) == tail);
+  std::vector<double> last;
+  std::stringstream row(rows.back());
+  for (std::string cell; std::getline(row, cell, ',');) last.push_back(std::stod(cell));
+  REQUIRE(last.size() >= 2);
+  CHECK(last.back() == 1.0);                         // stuck
+  CHECK(std::abs(last[last.size() - 2]) <= 0.2);     // within the limit
+  CHECK(std::abs(last[last.size() - 2]) > 0.0);      // holding gravity's moment
+}
+
 TEST_CASE("mbrt sim names Euler parameters and body-axis angular velocities of rigid bodies; --h overrides") {
   const fs::path csv = fs::path(MBRT_TEST_WORK_DIR) / "top.csv";
   const Run r =

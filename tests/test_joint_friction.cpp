@@ -19,10 +19,12 @@
 
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "allocation_counter.hpp"
+#include "arm3_friction.hpp"
 #include "friction_arm.hpp"
 #include "friction_arm_7.hpp"
 #include "friction_spatial_chain_16_revolute.hpp"
@@ -233,8 +235,16 @@ TEST_CASE("friction keys: errors name the file, line and key") {
         "load-dependent friction (static, kinetic, radius) is not supported yet");
   check(pendulum_with(", friction: {torque: 0.1}", "spherical"), "joints[0].friction", "does not apply to a spherical joint");
   check(pendulum_with(", friction: {torque: 0.1}") + "solver: {scheme: staggered-pcst}\n", "joints.pin.friction",
-
         "joint friction needs a tree scheme, rk4-tree, midpoint-tree or staggered-tree");
+  // A friction output names a joint with friction.
+  const std::string output = "inputs:\n  - {name: tau, type: joint_torque, joint: pin, min: -1, max: 1, safe: 0}\n"
+                             "outputs:\n  - {name: f, type: joint_friction, joint: pin}\n";
+  const std::string what = error_of(pendulum_with("") + output);
+  INFO(what);
+  CHECK(what.find("arm.yaml:10") != std::string::npos);
+  CHECK(what.find("outputs[0].joint") != std::string::npos);
+  CHECK(what.find("joint 'pin' has no friction") != std::string::npos);
+  CHECK(error_of(pendulum_with(", friction: {torque: 0.1}") + output + "solver: {scheme: rk4-tree}\n") == "(no error)");
 }
 
 namespace {
@@ -300,4 +310,41 @@ TEST_CASE("stress: friction in every joint of a 7-link spatial arm and a 16-link
     CHECK(run.largest_rise < 1e-11);
     CHECK(energy(run.s) < energy(m::initial_state()) - 5.0);
   }
+}
+
+TEST_CASE("the frictional demo arm publishes each joint's friction torque and stick state") {
+  // examples/hil_demo/arm3_friction.yaml: horizontal, so gravity loads only
+  // the bearings; 0.5, 0.3, 0.1 N m of friction at shoulder, elbow, wrist.
+  namespace m = mbrt::models::arm3_friction;
+  m::State s = m::initial_state();
+  m::Outputs y{};
+  // 0.4 N m at the shoulder is held: nothing moves, the shoulder's friction is -0.4 N m.
+  s.inputs[m::input::tau_shoulder] = 0.4;
+  for (int i = 0; i < 100; ++i) REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+  m::outputs(s, y);
+  CHECK(y[m::output::shoulder_stuck] == 1.0);
+  CHECK(y[m::output::elbow_stuck] == 1.0);
+  CHECK(y[m::output::wrist_stuck] == 1.0);
+  CHECK(y[m::output::shoulder_friction] == doctest::Approx(-0.4).epsilon(1e-9));
+  CHECK(std::abs(y[m::output::shoulder_angle]) < 1e-12);
+  // 2 N m turns it: the shoulder slips forward against its full 0.5 N m.
+  s.inputs[m::input::tau_shoulder] = 2.0;
+  for (int i = 0; i < 100; ++i) REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+  m::outputs(s, y);
+  CHECK(y[m::output::shoulder_stuck] == 0.0);
+  CHECK(y[m::output::shoulder_rate] > 0.0);
+  CHECK(y[m::output::shoulder_friction] == doctest::Approx(-0.5).epsilon(1e-12));
+  CHECK(y[m::output::shoulder_friction] == s.friction[m::friction::shoulder]);
+  CHECK(y[m::output::elbow_stuck] == s.stuck[m::friction::elbow]);
+
+  // The CAN description gives the friction signals their units.
+  std::ifstream dbc(MBRT_ARM3_FRICTION_DBC);
+  REQUIRE(dbc.good());
+  std::string line, friction_line, stuck_line;
+  while (std::getline(dbc, line)) {
+    if (line.find("SG_ shoulder_friction ") != std::string::npos) friction_line = line;
+    if (line.find("SG_ shoulder_stuck ") != std::string::npos) stuck_line = line;
+  }
+  CHECK(friction_line.find("\"N m\"") != std::string::npos);
+  CHECK(stuck_line.find("\"\"") != std::string::npos);
 }

@@ -27,6 +27,8 @@ std::string output_unit(const Model& m, const Output& out, int k) {
     return k < 3 ? "m/s" : "rad/s";
   }
   const bool revolute = m.joints[static_cast<size_t>(out.joint)].type == JointType::revolute;
+  if (out.type == OutputType::joint_stuck) return "";
+  if (out.type == OutputType::joint_friction) return revolute ? "N m" : "N";
   if (out.type == OutputType::joint_position) return revolute ? "rad" : "m";
   return revolute ? "rad/s" : "m/s";
 }

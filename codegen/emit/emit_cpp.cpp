@@ -108,7 +108,9 @@ std::vector<StateField> Emitter::state_fields() const {
       f.push_back({"  // Joint friction by friction:: index (docs/friction.md): the friction torque or\n"
                    "  // force of the last step (its impulse / h; N m or N, along +q), and 1 where\n"
                    "  // the joint stuck in it, 0 where it slipped.\n"
-                   "  std::array<double, kFrictionJoints> friction{}, stuck{};\n",
+                   "  std::array<double, kFrictionJoints> friction{}, stuck{};\n"
+                   "  static constexpr std::array<const char*, kFrictionJoints> friction_joints{{" + friction_joint_names() +
+                   "}};  // their names\n",
                    "friction", "double", "FRICTION_JOINTS", "", friction});
       f.push_back({"", "stuck", "double", "FRICTION_JOINTS", "", friction});
     }

@@ -70,6 +70,8 @@ std::string Emitter::output_layout(const Output& out) const {
     case OutputType::joint_velocity: return revolute_output(out) ? "rad/s" : "m/s";
     case OutputType::body_pose: return "x, y, z (m, world), e0..e3";
     case OutputType::body_velocity: return "vx, vy, vz (m/s, world), wx, wy, wz (rad/s, body)";
+    case OutputType::joint_friction: return revolute_output(out) ? "N m" : "N";
+    case OutputType::joint_stuck: return "1 stuck, 0 slipping";
   }
   return "";
 }
@@ -110,6 +112,11 @@ void Emitter::outputs_function(std::ostringstream& o) const {
   o << "static void outputs(const State& s, Outputs& y) noexcept {\n  Kinematics k;\n  kinematics(s, k);\n";
   for (const Output& out : m_.outputs) {
     const std::string at = "y.data() + output::" + out.name;
+    if (out.type == OutputType::joint_friction || out.type == OutputType::joint_stuck) {
+      o << "  y[output::" << out.name << "] = s." << (out.type == OutputType::joint_friction ? "friction" : "stuck")
+        << "[friction::" << m_.joints[static_cast<size_t>(out.joint)].name << "];\n";
+      continue;
+    }
     if (out.joint >= 0) {
       const Joint& j = m_.joints[static_cast<size_t>(out.joint)];
       o << "  y[output::" << out.name << "] = mbrt::" << (revolute_output(out) ? "revolute" : "prismatic")

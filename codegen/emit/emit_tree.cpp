@@ -242,6 +242,14 @@ void Emitter::tree_types(std::ostringstream& o) const {
     << "using FrictionColumns = std::array<Dofs, kFrictionJoints>;\n\n";
 }
 
+std::string Emitter::friction_joint_names() const {
+  std::string names;
+  for (size_t k : friction_frames()) {
+    names += (names.empty() ? "\"" : ", \"") + m_.joints[static_cast<size_t>(a_.tree_frames.frames[k].joint)].name + "\"";
+  }
+  return names;
+}
+
 std::vector<size_t> Emitter::friction_frames() const {
   const std::vector<TreeFrame>& frames = a_.tree_frames.frames;
   std::vector<size_t> out;

@@ -288,8 +288,10 @@ class Emitter {
   void tree_kernels(std::ostringstream& o) const;
   std::vector<Expr> tree_recursion(const TreeRecursionTerms& terms) const;  // into StraightLine::current()
   // Joint friction (docs/friction.md): the frames of the joints with
-  // friction, in the model's joint order; their constants and kernel.
+  // friction, in the model's joint order; their names, quoted ("a", "b");
+  // their constants and kernel.
   std::vector<size_t> friction_frames() const;
+  std::string friction_joint_names() const;
   void friction_constants(std::ostringstream& o) const;  // in struct Model
   void friction_response_kernel(std::ostringstream& o) const;
 

@@ -761,7 +761,14 @@ Output parse_output(const Value& item, const Model& model, std::map<std::string,
   out.where = item.where;
   const std::string type_name = read_signal_head(s, kOutputTypeTable, names_seen, out.name, out.type);
   s.restrict_to(output_keys(out.type), "a " + type_name + " output");
-  if (out.type == OutputType::joint_position || out.type == OutputType::joint_velocity) {
+  if (out.type == OutputType::joint_friction || out.type == OutputType::joint_stuck) {
+    const Value joint = s.get("joint");
+    out.joint = read_joint_ref(joint, model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");
+    const Joint& j = model.joints[static_cast<size_t>(out.joint)];
+    if (!(j.friction > 0.0)) {
+      fail(joint, "joint '" + j.name + "' has no friction; give it friction: {torque: N m} or {force: N} (docs/friction.md)");
+    }
+  } else if (out.type == OutputType::joint_position || out.type == OutputType::joint_velocity) {
     out.joint = read_joint_ref(s.get("joint"), model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");
   } else {
     const Value body = s.get("body");

@@ -2,7 +2,9 @@
 // publishes. joint_position and joint_velocity of a revolute (rad, rad/s) or
 // prismatic (m, m/s) joint, measured from t = 0; body_pose (x, y, z,
 // e0..e3) and body_velocity (vx, vy, vz world; wx, wy, wz body axes) of a
-// body.
+// body; joint_friction (N m or N, along the joint's coordinate) and
+// joint_stuck (1 stuck, 0 slipping) of a joint with friction, from the last
+// step (docs/friction.md).
 #pragma once
 
 #include <array>
@@ -12,8 +14,8 @@
 
 namespace mbrt::codegen {
 
-enum class OutputType { joint_position, joint_velocity, body_pose, body_velocity };
-inline constexpr std::size_t kOutputTypeCount = 4;  // enumerators of OutputType
+enum class OutputType { joint_position, joint_velocity, body_pose, body_velocity, joint_friction, joint_stuck };
+inline constexpr std::size_t kOutputTypeCount = 6;  // enumerators of OutputType
 
 struct OutputTypeRow {
   OutputType type;
@@ -28,6 +30,8 @@ inline constexpr std::array<OutputTypeRow, kOutputTypeCount> kOutputTypeTable{{
     {OutputType::joint_velocity, "joint_velocity", "joint", 1},
     {OutputType::body_pose,      "body_pose",      "body",  7},
     {OutputType::body_velocity,  "body_velocity",  "body",  6},
+    {OutputType::joint_friction, "joint_friction", "joint", 1},
+    {OutputType::joint_stuck,    "joint_stuck",    "joint", 1},
 }};
 static_assert(rows_in_enum_order(kOutputTypeTable), "kOutputTypeTable needs one row per OutputType, in enum order");
 

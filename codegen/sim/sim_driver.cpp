@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -58,6 +59,21 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
+// With --reactions, each friction joint's torque or force and whether it
+// stuck (docs/friction.md), where the model has joint friction.
+template <class State>
+void write_friction_header(std::FILE* f) {
+  if constexpr (requires { State::friction_joints; }) {
+    for (const char* j : State::friction_joints) std::fprintf(f, ",%s.friction,%s.stuck", j, j);
+  }
+}
+template <class State>
+void write_friction(std::FILE* f, const State& s) {
+  if constexpr (requires { State::friction_joints; }) {
+    for (std::size_t i = 0; i < s.friction.size(); ++i) std::fprintf(f, ",%.17g,%.17g", s.friction[i], s.stuck[i]);
+  }
+}
+
 void write_header(std::FILE* f, const Options& o) {
   const bool velocities = o.velocities;
   std::fprintf(f, "t");
@@ -73,6 +89,7 @@ void write_header(std::FILE* f, const Options& o) {
     for (const mbrt::ConstraintInfo& c : model::kConstraintInfo) {
       for (const char* q : {"fx", "fy", "fz", "tx", "ty", "tz"}) std::fprintf(f, ",%s.%s", c.name, q);
     }
+    write_friction_header<model::State>(f);
   }
   std::fprintf(f, "\n");
 }
@@ -106,6 +123,7 @@ void write_row(std::FILE* f, const model::State& s, const Options& o) {
       write_vec(f, j.force.data(), 3);
       write_vec(f, j.torque.data(), 3);
     }
+    write_friction(f, s);
   }
   std::fprintf(f, "\n");
 }

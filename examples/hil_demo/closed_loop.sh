@@ -3,12 +3,13 @@
 # process, both on LCM URL $1, for $2 seconds, then prints the loop's timing
 # and the controller's tracking error. Reports go to directory $3. The loop
 # runs at $4 Hz (default 1000) with one step of 1/$4 s per cycle; the
-# environment's HIL_OPTIONS are added to its command line (e.g. --fifo 80 --cpu 1).
+# environment's HIL_OPTIONS are added to its command line (e.g. --fifo 80 --cpu 1),
+# and $MODEL replaces the arm (e.g. examples/hil_demo/arm3_friction.yaml).
 set -euo pipefail
 url=$1 seconds=$2 out=$3 rate=${4:-1000}
 cd "$(dirname "$0")/../.."
 mbrt=${MBRT:-build/bin/mbrt}
-model=examples/hil_demo/arm3.yaml
+model=${MODEL:-examples/hil_demo/arm3.yaml}
 mkdir -p "$out"
 # Compile both programs before the clock starts (cached afterwards).
 step=$(python3 -c "print(repr(1.0 / $rate))")
