@@ -26,6 +26,7 @@
 #include "allocation_counter.hpp"
 #include "arm3_friction.hpp"
 #include "friction_arm.hpp"
+#include "friction_belt.hpp"
 #include "friction_arm_7.hpp"
 #include "friction_spatial_chain_16_revolute.hpp"
 #include "friction_incline.hpp"
@@ -231,6 +232,19 @@ TEST_CASE("friction keys: errors name the file, line and key") {
   check(pendulum_with(", friction: {torque: 3}", "prismatic"), "joints[0].friction.torque",
         "prismatic joint's friction is a force");
   check(pendulum_with(", friction: {torque: 3, viscous: 1}"), "joints[0].friction.viscous", "unknown key 'viscous'");
+  check(pendulum_with(", friction: {static_torque: 0.1, kinetic_torque: 0.2}"), "joints[0].friction.static_torque",
+        "expected a number >= kinetic_torque (0.2)");
+  check(pendulum_with(", friction: {static_torque: 0.3}"), "joints[0].friction.static_torque",
+        "give both static_torque and kinetic_torque");
+  check(pendulum_with(", friction: {torque: 0.3, kinetic_torque: 0.2}"), "joints[0].friction.kinetic_torque",
+        "give either torque or both static_torque and kinetic_torque");
+  check(pendulum_with(", friction: {static_force: 3, kinetic_force: 2}"), "joints[0].friction.static_force",
+        "revolute joint's friction is a torque");
+  check(pendulum_with(", friction: {}"), "joints[0].friction", "expected torque (or static_torque and kinetic_torque)");
+  const mbrt::codegen::Model two =
+      mbrt::codegen::parse_model(pendulum_with(", friction: {static_force: 3, kinetic_force: 2}", "prismatic"), "arm.yaml");
+  CHECK(two.joints[0].static_friction == 3.0);
+  CHECK(two.joints[0].friction == 2.0);
   check(pendulum_with(", friction: {static: 0.3, kinetic: 0.2, radius: 0.01}"), "joints[0].friction.static",
         "load-dependent friction (static, kinetic, radius) is not supported yet");
   check(pendulum_with(", friction: {torque: 0.1}", "spherical"), "joints[0].friction", "does not apply to a spherical joint");
@@ -347,4 +361,45 @@ TEST_CASE("the frictional demo arm publishes each joint's friction torque and st
   }
   CHECK(friction_line.find("\"N m\"") != std::string::npos);
   CHECK(stuck_line.find("\"\"") != std::string::npos);
+}
+
+TEST_CASE("stick-slip on a moving belt: static and kinetic friction give the closed-form stick and slip phases") {
+  // tests/models/friction_belt.yaml: m = 1 kg, k = 100 N/m, v_b = 0.1 m/s,
+  // F_s = 2.5 N, F_k = 1 N. Stuck, the block rides the belt until k x = F_s;
+  // slipping, x - F_k/k = u0 cos(w t) + (v_b/w) sin(w t), u0 = (F_s - F_k)/k,
+  // until its velocity is the belt's again, at w t = 2 pi - 2 atan(u0 w / v_b),
+  // where u = -u0 (the oscillation's energy is the same at both ends).
+  namespace m = mbrt::models::friction_belt;
+  const double mass = 1.0, k = 100.0, vb = 0.1, fs = 2.5, fk = 1.0, w = std::sqrt(k / mass);
+  const double u0 = (fs - fk) / k;
+  const double slip = (2.0 * M_PI - 2.0 * std::atan(u0 * w / vb)) / w;  // 0.4318 s
+  const double restick_x = fk / k - u0;                                   // -0.005 m
+  const double stick = (fs / k - restick_x) / vb;                         // 0.3 s
+  const double first_stick = (fs / k) / vb;                               // 0.25 s from x = 0
+
+  m::State s = m::initial_state();
+  const auto x = [&] { return s.rigid[m::rigid::block].r[0]; };
+  std::vector<double> changes, x_at_change;  // times the stick state changed, and x there
+  double stuck = 1.0;                          // it starts moving with the belt
+  for (int i = 0; i < 3000; ++i) {
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    if (s.stuck[m::friction::contact] != stuck) {
+      stuck = s.stuck[m::friction::contact];
+      changes.push_back(s.t);
+      x_at_change.push_back(x());
+    }
+  }
+  // 3 s: breaks loose at 0.25 s, then slip 0.43 s, stick 0.3 s, ...: 8 changes.
+  REQUIRE(changes.size() >= 8);
+  const double h = m::kStep;
+  CHECK(std::abs(changes[0] - first_stick) < 2.0 * h);
+  for (std::size_t c = 1; c < changes.size(); ++c) {
+    const bool slipped = c % 2 == 1;  // changes[c - 1] broke loose, changes[c] stuck again
+    INFO("phase ", c, slipped ? " (slip)" : " (stick)");
+    CHECK(std::abs(changes[c] - changes[c - 1] - (slipped ? slip : stick)) < 2.0 * h);
+    // Breaking loose where the spring reaches F_s, sticking again at (2 F_k - F_s)/k.
+    CHECK(std::abs(x_at_change[c] - (slipped ? restick_x : fs / k)) < 2.0 * vb * h);
+  }
+  // The belt keeps its speed.
+  CHECK(std::abs(s.rigid[m::rigid::belt].v[0] - vb) < 1e-6);
 }

@@ -254,7 +254,7 @@ std::vector<size_t> Emitter::friction_frames() const {
   const std::vector<TreeFrame>& frames = a_.tree_frames.frames;
   std::vector<size_t> out;
   for (size_t k = 0; k < frames.size(); ++k) {
-    if (frames[k].friction > 0.0) out.push_back(k);
+    if (frames[k].static_friction > 0.0) out.push_back(k);
   }
   std::sort(out.begin(), out.end(), [&](size_t a, size_t b) { return frames[a].joint < frames[b].joint; });
   return out;
@@ -266,19 +266,22 @@ std::vector<size_t> Emitter::friction_frames() const {
 void Emitter::friction_constants(std::ostringstream& o) const {
   const std::vector<size_t> friction = friction_frames();
   if (friction.empty()) return;
-  std::string dofs, limits;
+  std::string dofs, limits, static_limits;
   for (size_t c = 0; c < friction.size(); ++c) {
     const TreeFrame& f = a_.tree_frames.frames[friction[c]];
     dofs += (c ? ", " : "") + std::string("body::") + body(f.body).name;
     limits += (c ? ", " : "") + num(f.friction);
+    static_limits += (c ? ", " : "") + num(f.static_friction);
   }
   const size_t sweeps = friction.size() == 1 ? 1 : 2 * friction.size();
   o << "// Joint friction (docs/friction.md), by friction:: index: each joint's\n"
-    << "// coordinate and Coulomb limit (N m or N); projected Gauss-Seidel sweeps a step.\n"
+    << "// coordinate, kinetic and static Coulomb limits (N m or N); projected\n"
+    << "// Gauss-Seidel sweeps a step.\n"
     << "static constexpr int kFrictionJoints = mbrt::models::" << m_.name << "::kFrictionJoints;\n"
     << "using FrictionColumns = mbrt::models::" << m_.name << "::FrictionColumns;\n"
     << "static constexpr std::array<std::size_t, kFrictionJoints> kFrictionDof{{" << dofs << "}};\n"
     << "static constexpr std::array<double, kFrictionJoints> kFrictionLimit{{" << limits << "}};\n"
+    << "static constexpr std::array<double, kFrictionJoints> kFrictionStaticLimit{{" << static_limits << "}};\n"
     << "static constexpr int kFrictionSweeps = " << sweeps << ";\n";
 }
 

@@ -73,8 +73,10 @@ struct Joint {
   // N^2 J_rotor (kg m^2; prismatic: kg), felt by the joint coordinate alone.
   double armature = 0.0;
   // revolute, prismatic: the constant Coulomb friction torque (N m) or force
-  // (N) the joint resists sliding with; 0 for none (docs/friction.md).
+  // (N) the joint resists sliding with, 0 for none, and the larger one a
+  // joint at rest holds before it breaks loose (docs/friction.md).
   double friction = 0.0;
+  double static_friction = 0.0;  // >= friction
   double radius = 0.0;                               // rolling_disk, rolling_ball, m
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();     // knife_edge: unit, world at t = 0, fixed in the body
   Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();    // rolling_disk, rolling_ball: a point of the ground plane

@@ -40,8 +40,10 @@ const Keys kAli3pKeys = {"alpha",      "relative_shift",        "alpha_of",   "n
                          "projection", "projection_iterations", "integrator", "rho_inf"};
 
 // A joint's friction: constant Coulomb friction, a torque (revolute) or a
-// force (prismatic); the load-dependent keys are refused by name.
-const Keys kFrictionKeys = {"torque", "force", "static", "kinetic", "radius"};
+// force (prismatic), one value or a static and a kinetic one; the
+// load-dependent keys are refused by name.
+const Keys kFrictionKeys = {"torque",        "force",        "static_torque", "kinetic_torque", "static_force",
+                            "kinetic_force", "static",       "kinetic",       "radius"};
 
 const Keys kSchemes(mbrt::kSchemeNames.begin(), mbrt::kSchemeNames.end());
 
@@ -454,8 +456,10 @@ Joint parse_contact(const Section& s, const Model& model, Joint& j) {
   return j;
 }
 
-// friction: {torque: T} on a revolute joint, {force: F} on a prismatic one.
-double read_joint_friction(const Value& v, JointType type) {
+// friction: {torque: T} on a revolute joint, {force: F} on a prismatic one,
+// or {static_torque: Ts, kinetic_torque: Tk} ({static_force, kinetic_force})
+// with Ts >= Tk: into j.friction (kinetic) and j.static_friction.
+void read_joint_friction(const Value& v, Joint& j) {
   const Section s(v, kFrictionKeys);
   for (const char* key : {"static", "kinetic", "radius"}) {
     if (auto x = s.find(key)) {
@@ -463,13 +467,36 @@ double read_joint_friction(const Value& v, JointType type) {
                "friction torque (revolute) or force (prismatic) (docs/friction.md)");
     }
   }
-  const bool revolute = type == JointType::revolute;
-  const char* wrong = revolute ? "force" : "torque";
-  if (auto x = s.find(wrong)) {
-    fail(*x, std::string("a ") + (revolute ? "revolute joint's friction is a torque: friction: {torque: N m}"
-                                           : "prismatic joint's friction is a force: friction: {force: N}"));
+  const bool revolute = j.type == JointType::revolute;
+  const std::string unit = revolute ? "torque" : "force";
+  for (const char* wrong : {"force", "static_force", "kinetic_force", "torque", "static_torque", "kinetic_torque"}) {
+    if (std::string(wrong).find(unit) != std::string::npos) continue;
+    if (auto x = s.find(wrong)) {
+      fail(*x, std::string("a ") + (revolute ? "revolute joint's friction is a torque: friction: {torque: N m}"
+                                             : "prismatic joint's friction is a force: friction: {force: N}"));
+    }
   }
-  return read_non_negative(s.get(revolute ? "torque" : "force"));
+  const std::string static_key = "static_" + unit, kinetic_key = "kinetic_" + unit;
+  const auto given_static = s.find(static_key), given_kinetic = s.find(kinetic_key), given_one = s.find(unit);
+  if (given_one) {
+    if (given_static || given_kinetic) {
+      fail(given_static ? *given_static : *given_kinetic,
+           "give either " + unit + " or both " + static_key + " and " + kinetic_key + ", not both forms");
+    }
+    j.friction = j.static_friction = read_non_negative(*given_one);
+    return;
+  }
+  if (!given_static && !given_kinetic) {
+    fail(v, "expected " + unit + " (or " + static_key + " and " + kinetic_key + ") in the joint's friction");
+  }
+  if (!given_static || !given_kinetic) {
+    fail(given_static ? *given_static : *given_kinetic, "give both " + static_key + " and " + kinetic_key);
+  }
+  j.friction = read_non_negative(*given_kinetic);
+  j.static_friction = read_non_negative(*given_static);
+  if (j.static_friction < j.friction) {
+    fail_expected(*given_static, "a number >= " + kinetic_key + " (" + format_number(j.friction) + ")");
+  }
 }
 
 Joint parse_joint(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
@@ -503,7 +530,7 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
       j.point = read_vector3(s.get("point"));
       j.axis = read_axis(s.get("axis"));
       if (auto x = s.find("armature")) j.armature = read_non_negative(*x);
-      if (auto x = s.find("friction")) j.friction = read_joint_friction(*x, j.type);
+      if (auto x = s.find("friction")) read_joint_friction(*x, j);
       break;
     case JointType::screw: {
       j.point = read_vector3(s.get("point"));
@@ -765,7 +792,7 @@ Output parse_output(const Value& item, const Model& model, std::map<std::string,
     const Value joint = s.get("joint");
     out.joint = read_joint_ref(joint, model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");
     const Joint& j = model.joints[static_cast<size_t>(out.joint)];
-    if (!(j.friction > 0.0)) {
+    if (!(j.static_friction > 0.0)) {
       fail(joint, "joint '" + j.name + "' has no friction; give it friction: {torque: N m} or {force: N} (docs/friction.md)");
     }
   } else if (out.type == OutputType::joint_position || out.type == OutputType::joint_velocity) {

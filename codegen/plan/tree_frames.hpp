@@ -53,7 +53,8 @@ struct TreeFrame {
   // -1 where the tree hangs the joint's body 1 from its body 2.
   double sign = 1.0;
   double armature = 0.0;
-  double friction = 0.0;  // Coulomb friction torque or force, N m or N (docs/friction.md)
+  double friction = 0.0;         // kinetic Coulomb friction torque or force, N m or N (docs/friction.md)
+  double static_friction = 0.0;  // what it holds at rest, >= friction
 };
 
 struct TreeFrames {

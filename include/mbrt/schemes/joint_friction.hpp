@@ -17,7 +17,8 @@
 // joint held at rest stays there, and a sliding joint under constant forces
 // moves as it should.
 //
-// M provides kFrictionJoints, kFrictionDof, kFrictionLimit, kFrictionSweeps
+// M provides kFrictionJoints, kFrictionDof, kFrictionLimit (kinetic),
+// kFrictionStaticLimit, kFrictionSweeps
 // and friction_response (the columns M^-1 P, the articulated-body recursion
 // of Featherstone 2008, "Rigid Body Dynamics Algorithms", table 7.1, with a
 // unit force in one joint and nothing else); State has friction and stuck;
@@ -84,7 +85,10 @@ void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
   };
   std::array<double, n> p, v, limit;  // impulses, their joints' rates, |p| bounds
   for (std::size_t i = 0; i < n; ++i) {
-    limit[i] = M::kFrictionLimit[i] * h;
+    // A joint at rest at the step's start (stuck, or started at rest) holds
+    // up to its static limit; a sliding one feels the kinetic limit.
+    const bool at_rest = s.stuck[i] == 1.0 || w.qd0[M::kFrictionDof[i]] == 0.0;
+    limit[i] = (at_rest ? M::kFrictionStaticLimit[i] : M::kFrictionLimit[i]) * h;
     p[i] = std::fmin(std::fmax(s.friction[i] * h, -limit[i]), limit[i]);  // fmax drops a NaN of a failed step
   }
   for (std::size_t i = 0; i < n; ++i) v[i] = rate(i, p);
