@@ -27,6 +27,8 @@
 #include "arm3_friction.hpp"
 #include "friction_arm.hpp"
 #include "friction_belt.hpp"
+#include "friction_load_pendulum.hpp"
+#include "friction_spindown.hpp"
 #include "friction_arm_7.hpp"
 #include "friction_spatial_chain_16_revolute.hpp"
 #include "friction_incline.hpp"
@@ -219,7 +221,8 @@ std::string error_of(const std::string& yaml) {
 
 TEST_CASE("friction keys: errors name the file, line and key") {
   const mbrt::codegen::Model ok = mbrt::codegen::parse_model(pendulum_with(", friction: {torque: 0.2}"), "arm.yaml");
-  CHECK(ok.joints[0].friction == 0.2);
+  CHECK(ok.joints[0].friction.kinetic == 0.2);
+  CHECK(ok.joints[0].friction.static_limit == 0.2);
   const auto check = [](const std::string& yaml, const std::string& key, const std::string& phrase) {
     const std::string what = error_of(yaml);
     INFO(what);
@@ -237,16 +240,26 @@ TEST_CASE("friction keys: errors name the file, line and key") {
   check(pendulum_with(", friction: {static_torque: 0.3}"), "joints[0].friction.static_torque",
         "give both static_torque and kinetic_torque");
   check(pendulum_with(", friction: {torque: 0.3, kinetic_torque: 0.2}"), "joints[0].friction.kinetic_torque",
-        "give either torque or both static_torque and kinetic_torque");
+        "give one form of friction: torque, or static_torque and kinetic_torque");
   check(pendulum_with(", friction: {static_force: 3, kinetic_force: 2}"), "joints[0].friction.static_force",
         "revolute joint's friction is a torque");
-  check(pendulum_with(", friction: {}"), "joints[0].friction", "expected torque (or static_torque and kinetic_torque)");
+  check(pendulum_with(", friction: {}"), "joints[0].friction", "expected torque, or static_torque and kinetic_torque, or static and kinetic");
   const mbrt::codegen::Model two =
       mbrt::codegen::parse_model(pendulum_with(", friction: {static_force: 3, kinetic_force: 2}", "prismatic"), "arm.yaml");
-  CHECK(two.joints[0].static_friction == 3.0);
-  CHECK(two.joints[0].friction == 2.0);
-  check(pendulum_with(", friction: {static: 0.3, kinetic: 0.2, radius: 0.01}"), "joints[0].friction.static",
-        "load-dependent friction (static, kinetic, radius) is not supported yet");
+  CHECK(two.joints[0].friction.static_limit == 3.0);
+  CHECK(two.joints[0].friction.kinetic == 2.0);
+  const mbrt::codegen::Model pin = mbrt::codegen::parse_model(
+      pendulum_with(", friction: {static: 0.3, kinetic: 0.2, radius: 0.01}"), "arm.yaml");
+  CHECK(pin.joints[0].friction.static_per_load == doctest::Approx(0.003));
+  CHECK(pin.joints[0].friction.kinetic_per_load == doctest::Approx(0.002));
+  CHECK(pin.joints[0].friction.static_limit == 0.0);
+  check(pendulum_with(", friction: {static: 0.2, kinetic: 0.3, radius: 0.01}"), "joints[0].friction.static",
+        "expected a number >= kinetic (0.3)");
+  check(pendulum_with(", friction: {static: 0.3, kinetic: 0.2}"), "joints[0].friction.radius", "missing required key 'radius'");
+  check(pendulum_with(", friction: {static: 0.3, kinetic: 0.2, radius: 0.01}", "prismatic"), "joints[0].friction.radius",
+        "a prismatic joint's friction takes no radius");
+  check(pendulum_with(", friction: {torque: 0.3, static: 0.2}"), "joints[0].friction.static",
+        "give one form of friction");
   check(pendulum_with(", friction: {torque: 0.1}", "spherical"), "joints[0].friction", "does not apply to a spherical joint");
   check(pendulum_with(", friction: {torque: 0.1}") + "solver: {scheme: staggered-pcst}\n", "joints.pin.friction",
         "joint friction needs a tree scheme, rk4-tree, midpoint-tree or staggered-tree");
@@ -402,4 +415,50 @@ TEST_CASE("stick-slip on a moving belt: static and kinetic friction give the clo
   }
   // The belt keeps its speed.
   CHECK(std::abs(s.rigid[m::rigid::belt].v[0] - vb) < 1e-6);
+}
+
+TEST_CASE("load-dependent pin friction: a spinning disk stops at the closed-form time, a rod is held below mu_s r") {
+  SUBCASE("spin-down: moment mu_k r m g, the centre at rest") {
+    // tests/models/friction_spindown.yaml: m = 2 kg, J = 0.04 kg m^2, omega0 =
+    // 10 rad/s, mu_k = 0.1, r = 0.01 m: alpha = mu_k r m g / J.
+    namespace m = mbrt::models::friction_spindown;
+    const double alpha = 0.1 * 0.01 * 2.0 * kG / 0.04, omega0 = 10.0;
+    const double stop = omega0 / alpha, angle = omega0 * omega0 / (2.0 * alpha);  // 20.387 s, 101.94 rad
+    m::State s = m::initial_state();
+    int stopped_at = -1;
+    for (int i = 0; i < 25000; ++i) {
+      REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+      if (i == 9999) {  // t = 10 s, sliding: omega0 - alpha t, and the friction is -mu_k r m g
+        // The transverse reaction from the multipliers is m g to 1e-8 (measured).
+        CHECK(s.qd[m::body::disk] == doctest::Approx(omega0 - alpha * 10.0).epsilon(1e-7));
+        CHECK(s.q[m::body::disk] == doctest::Approx(omega0 * 10.0 - 0.5 * alpha * 100.0).epsilon(1e-7));
+        CHECK(s.friction[m::friction::axle] == doctest::Approx(-alpha * 0.04).epsilon(1e-7));
+      }
+      if (stopped_at < 0 && s.stuck[m::friction::axle] == 1.0) stopped_at = i;
+    }
+    CHECK(std::abs((stopped_at + 1) * m::kStep - stop) < 2.0 * m::kStep);
+    CHECK(s.q[m::body::disk] == doctest::Approx(angle).epsilon(1e-6));
+    CHECK(s.qd[m::body::disk] == 0.0);
+    CHECK(s.stuck[m::friction::axle] == 1.0);
+  }
+  SUBCASE("held at rest where m g d sin(theta) <= mu_s r m g") {
+    // tests/models/friction_load_pendulum.yaml: d = 0.5 m, mu_s r = 0.003 m.
+    namespace m = mbrt::models::friction_load_pendulum;
+    for (const double theta : {0.0059, -0.0059, 0.0061, 0.02}) {
+      INFO("theta0 = ", theta);
+      m::Parameters p = m::kDefaultParameters;
+      REQUIRE(m::set_parameter(p, "pin.coordinate", theta));
+      m::State s = m::initial_state(p);
+      for (int i = 0; i < 500; ++i) REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+      const bool held = 0.5 * std::sin(std::abs(theta)) <= 0.3 * 0.01;
+      CHECK((s.stuck[m::friction::pin] == 1.0) == held);
+      if (held) {
+        // The first step, from rest, moves it by rk4's O(h^4) before it is held.
+        CHECK(std::abs(s.q[m::body::rod] - theta) < 1e-12);
+        CHECK(s.friction[m::friction::pin] == doctest::Approx(kG * 0.5 * std::sin(theta)).epsilon(1e-6));
+      } else {
+        CHECK(std::abs(s.q[m::body::rod]) < std::abs(theta));  // it swung down
+      }
+    }
+  }
 }

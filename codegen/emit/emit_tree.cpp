@@ -254,7 +254,7 @@ std::vector<size_t> Emitter::friction_frames() const {
   const std::vector<TreeFrame>& frames = a_.tree_frames.frames;
   std::vector<size_t> out;
   for (size_t k = 0; k < frames.size(); ++k) {
-    if (frames[k].static_friction > 0.0) out.push_back(k);
+    if (frames[k].friction.any()) out.push_back(k);
   }
   std::sort(out.begin(), out.end(), [&](size_t a, size_t b) { return frames[a].joint < frames[b].joint; });
   return out;
@@ -266,22 +266,31 @@ std::vector<size_t> Emitter::friction_frames() const {
 void Emitter::friction_constants(std::ostringstream& o) const {
   const std::vector<size_t> friction = friction_frames();
   if (friction.empty()) return;
-  std::string dofs, limits, static_limits;
+  std::string dofs, limits, static_limits, per_load, static_per_load;
+  bool loads = false;
   for (size_t c = 0; c < friction.size(); ++c) {
     const TreeFrame& f = a_.tree_frames.frames[friction[c]];
-    dofs += (c ? ", " : "") + std::string("body::") + body(f.body).name;
-    limits += (c ? ", " : "") + num(f.friction);
-    static_limits += (c ? ", " : "") + num(f.static_friction);
+    const std::string comma = c ? ", " : "";
+    dofs += comma + "body::" + body(f.body).name;
+    limits += comma + num(f.friction.kinetic);
+    static_limits += comma + num(f.friction.static_limit);
+    per_load += comma + num(f.friction.kinetic_per_load);
+    static_per_load += comma + num(f.friction.static_per_load);
+    loads = loads || f.friction.load_dependent();
   }
   const size_t sweeps = friction.size() == 1 ? 1 : 2 * friction.size();
   o << "// Joint friction (docs/friction.md), by friction:: index: each joint's\n"
-    << "// coordinate, kinetic and static Coulomb limits (N m or N); projected\n"
+    << "// coordinate; kinetic and static Coulomb limits (N m or N), each a constant\n"
+    << "// plus a multiple of the joint's transverse reaction (m or 1); projected\n"
     << "// Gauss-Seidel sweeps a step.\n"
     << "static constexpr int kFrictionJoints = mbrt::models::" << m_.name << "::kFrictionJoints;\n"
     << "using FrictionColumns = mbrt::models::" << m_.name << "::FrictionColumns;\n"
     << "static constexpr std::array<std::size_t, kFrictionJoints> kFrictionDof{{" << dofs << "}};\n"
     << "static constexpr std::array<double, kFrictionJoints> kFrictionLimit{{" << limits << "}};\n"
     << "static constexpr std::array<double, kFrictionJoints> kFrictionStaticLimit{{" << static_limits << "}};\n"
+    << "static constexpr std::array<double, kFrictionJoints> kFrictionPerLoad{{" << per_load << "}};\n"
+    << "static constexpr std::array<double, kFrictionJoints> kFrictionStaticPerLoad{{" << static_per_load << "}};\n"
+    << "static constexpr bool kFrictionLoads = " << (loads ? "true" : "false") << ";\n"
     << "static constexpr int kFrictionSweeps = " << sweeps << ";\n";
 }
 
@@ -305,6 +314,32 @@ void Emitter::friction_response_kernel(std::ostringstream& o) const {
     << "static void friction_response([[maybe_unused]] const State& s, [[maybe_unused]] const HalfAngles& ha, "
     << "FrictionColumns& g) noexcept {\n"
     << line.code("  ") << "}\n\n";
+}
+
+// Where a friction limit depends on the load: each friction joint's
+// transverse reaction force from the multipliers at the state (reactions(),
+// the absolute-coordinate constraint forces of the tree's joints), 0 for
+// the others. The joint's axis is its frame's a1.
+void Emitter::friction_loads_function(std::ostringstream& o) const {
+  const std::vector<size_t> friction = friction_frames();
+  bool loads = false;
+  for (size_t k : friction) loads = loads || a_.tree_frames.frames[k].friction.load_dependent();
+  if (!loads) return;
+  o << "// (s with its body states) => (load): each friction joint's transverse\n"
+    << "// reaction force (N), where its limit depends on it; 0 elsewhere.\n"
+    << "static void friction_loads(const State& s, std::array<double, kFrictionJoints>& load) noexcept {\n"
+    << "  Reactions r;\n  reactions(s, r);\n";
+  for (size_t c = 0; c < friction.size(); ++c) {
+    const TreeFrame& f = a_.tree_frames.frames[friction[c]];
+    const std::string name = m_.joints[static_cast<size_t>(f.joint)].name;
+    o << "  load[" << c << "] = ";
+    if (f.friction.load_dependent()) {
+      o << "std::hypot(r[constraint::" << name << "].force_joint[1], r[constraint::" << name << "].force_joint[2]);\n";
+    } else {
+      o << "0.0;\n";
+    }
+  }
+  o << "}\n\n";
 }
 
 void Emitter::tree_kernels(std::ostringstream& o) const {
@@ -335,6 +370,7 @@ void Emitter::tree_kernels(std::ostringstream& o) const {
       << line.code("  ") << "}\n\n";
   }
   friction_response_kernel(o);
+  friction_loads_function(o);
 
   // Body states from the joint coordinates, chained from body to body in the
   // bodies' own axes: a body's Euler parameters are its parent's times a

@@ -294,6 +294,7 @@ class Emitter {
   std::string friction_joint_names() const;
   void friction_constants(std::ostringstream& o) const;  // in struct Model
   void friction_response_kernel(std::ostringstream& o) const;
+  void friction_loads_function(std::ostringstream& o) const;
 
   // emit_planar.cpp: namespace planar { ... step(s) } from a planar emitter.
   void planar_stages(std::ostringstream& o) const;

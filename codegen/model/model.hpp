@@ -55,6 +55,19 @@ struct Body {
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // body axes
 };
 
+// Coulomb friction in a revolute or prismatic joint (docs/friction.md): the
+// limit on its friction torque (N m) or force (N) is a constant plus a
+// multiple of the joint's transverse reaction force, the kinetic pair while
+// it slides, the static pair (each >= the kinetic one) while at rest.
+// Constant friction sets the constants; load-dependent friction the
+// multiples, mu * radius (revolute, m) or mu (prismatic).
+struct JointFriction {
+  double kinetic = 0.0, static_limit = 0.0;
+  double kinetic_per_load = 0.0, static_per_load = 0.0;
+  bool any() const { return static_limit > 0.0 || static_per_load > 0.0; }
+  bool load_dependent() const { return static_per_load > 0.0; }
+};
+
 struct Joint {
   std::string name;
   SourceLocation where;
@@ -72,11 +85,7 @@ struct Joint {
   // revolute, prismatic: a rotor's inertia reflected through its gear,
   // N^2 J_rotor (kg m^2; prismatic: kg), felt by the joint coordinate alone.
   double armature = 0.0;
-  // revolute, prismatic: the constant Coulomb friction torque (N m) or force
-  // (N) the joint resists sliding with, 0 for none, and the larger one a
-  // joint at rest holds before it breaks loose (docs/friction.md).
-  double friction = 0.0;
-  double static_friction = 0.0;  // >= friction
+  JointFriction friction;  // revolute, prismatic
   double radius = 0.0;                               // rolling_disk, rolling_ball, m
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();     // knife_edge: unit, world at t = 0, fixed in the body
   Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();    // rolling_disk, rolling_ball: a point of the ground plane

@@ -456,18 +456,17 @@ Joint parse_contact(const Section& s, const Model& model, Joint& j) {
   return j;
 }
 
-// friction: {torque: T} on a revolute joint, {force: F} on a prismatic one,
-// or {static_torque: Ts, kinetic_torque: Tk} ({static_force, kinetic_force})
-// with Ts >= Tk: into j.friction (kinetic) and j.static_friction.
-void read_joint_friction(const Value& v, Joint& j) {
+// A joint's friction (docs/friction.md), one of three forms:
+//   {torque: T} (revolute) or {force: F} (prismatic): constant;
+//   {static_torque: Ts, kinetic_torque: Tk} ({static_force, kinetic_force}),
+//   Ts >= Tk: constant, the static one at rest;
+//   {static: mu_s, kinetic: mu_k, radius: r} (revolute) or {static, kinetic}
+//   (prismatic), mu_s >= mu_k: proportional to the transverse reaction,
+//   times the pin's radius for a revolute joint (after Lidstrom 2012, "On the
+//   equations of motion in constrained multibody dynamics", eqs. 51-53).
+JointFriction read_joint_friction(const Value& v, JointType type) {
   const Section s(v, kFrictionKeys);
-  for (const char* key : {"static", "kinetic", "radius"}) {
-    if (auto x = s.find(key)) {
-      fail(*x, "load-dependent friction (static, kinetic, radius) is not supported yet; give a constant "
-               "friction torque (revolute) or force (prismatic) (docs/friction.md)");
-    }
-  }
-  const bool revolute = j.type == JointType::revolute;
+  const bool revolute = type == JointType::revolute;
   const std::string unit = revolute ? "torque" : "force";
   for (const char* wrong : {"force", "static_force", "kinetic_force", "torque", "static_torque", "kinetic_torque"}) {
     if (std::string(wrong).find(unit) != std::string::npos) continue;
@@ -476,27 +475,52 @@ void read_joint_friction(const Value& v, Joint& j) {
                                              : "prismatic joint's friction is a force: friction: {force: N}"));
     }
   }
-  const std::string static_key = "static_" + unit, kinetic_key = "kinetic_" + unit;
-  const auto given_static = s.find(static_key), given_kinetic = s.find(kinetic_key), given_one = s.find(unit);
-  if (given_one) {
-    if (given_static || given_kinetic) {
-      fail(given_static ? *given_static : *given_kinetic,
-           "give either " + unit + " or both " + static_key + " and " + kinetic_key + ", not both forms");
+  // A static and a kinetic value, static >= kinetic >= 0, both given.
+  const auto pair = [&](const std::string& static_key, const std::string& kinetic_key, double& stat, double& kin) {
+    const auto given_static = s.find(static_key), given_kinetic = s.find(kinetic_key);
+    if (!given_static || !given_kinetic) {
+      fail(given_static ? *given_static : *given_kinetic, "give both " + static_key + " and " + kinetic_key);
     }
-    j.friction = j.static_friction = read_non_negative(*given_one);
-    return;
+    kin = read_non_negative(*given_kinetic);
+    stat = read_non_negative(*given_static);
+    if (stat < kin) fail_expected(*given_static, "a number >= " + kinetic_key + " (" + format_number(kin) + ")");
+  };
+  const std::string static_key = "static_" + unit, kinetic_key = "kinetic_" + unit;
+  const std::vector<std::string> forms[] = {{unit}, {static_key, kinetic_key}, {"static", "kinetic", "radius"}};
+  int form = -1;
+  std::string first_key;
+  for (int f = 0; f < 3; ++f) {
+    for (const std::string& key : forms[f]) {
+      const auto x = s.find(key);
+      if (!x) continue;
+      if (form >= 0 && form != f) {
+        fail(*x, "give one form of friction: " + unit + ", or " + static_key + " and " + kinetic_key +
+                     ", or static and kinetic coefficients" + (revolute ? " and a radius" : "") + " (not " + first_key +
+                     " and " + key + ")");
+      }
+      if (form < 0) first_key = key;
+      form = f;
+    }
   }
-  if (!given_static && !given_kinetic) {
-    fail(v, "expected " + unit + " (or " + static_key + " and " + kinetic_key + ") in the joint's friction");
+  JointFriction out;
+  if (form == 0) {
+    out.kinetic = out.static_limit = read_non_negative(s.get(unit));
+  } else if (form == 1) {
+    pair(static_key, kinetic_key, out.static_limit, out.kinetic);
+  } else if (form == 2) {
+    pair("static", "kinetic", out.static_per_load, out.kinetic_per_load);
+    if (revolute) {
+      const double radius = read_positive(s.get("radius"));
+      out.static_per_load *= radius;
+      out.kinetic_per_load *= radius;
+    } else if (auto x = s.find("radius")) {
+      fail(*x, "a prismatic joint's friction takes no radius: its limit is mu times the transverse reaction force");
+    }
+  } else {
+    fail(v, "expected " + unit + ", or " + static_key + " and " + kinetic_key + ", or static and kinetic" +
+                (revolute ? " and radius" : "") + " in the joint's friction");
   }
-  if (!given_static || !given_kinetic) {
-    fail(given_static ? *given_static : *given_kinetic, "give both " + static_key + " and " + kinetic_key);
-  }
-  j.friction = read_non_negative(*given_kinetic);
-  j.static_friction = read_non_negative(*given_static);
-  if (j.static_friction < j.friction) {
-    fail_expected(*given_static, "a number >= " + kinetic_key + " (" + format_number(j.friction) + ")");
-  }
+  return out;
 }
 
 Joint parse_joint(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
@@ -530,7 +554,7 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
       j.point = read_vector3(s.get("point"));
       j.axis = read_axis(s.get("axis"));
       if (auto x = s.find("armature")) j.armature = read_non_negative(*x);
-      if (auto x = s.find("friction")) read_joint_friction(*x, j);
+      if (auto x = s.find("friction")) j.friction = read_joint_friction(*x, j.type);
       break;
     case JointType::screw: {
       j.point = read_vector3(s.get("point"));
@@ -792,7 +816,7 @@ Output parse_output(const Value& item, const Model& model, std::map<std::string,
     const Value joint = s.get("joint");
     out.joint = read_joint_ref(joint, model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");
     const Joint& j = model.joints[static_cast<size_t>(out.joint)];
-    if (!(j.static_friction > 0.0)) {
+    if (!j.friction.any()) {
       fail(joint, "joint '" + j.name + "' has no friction; give it friction: {torque: N m} or {force: N} (docs/friction.md)");
     }
   } else if (out.type == OutputType::joint_position || out.type == OutputType::joint_velocity) {

@@ -510,7 +510,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     }
   }
   for (const Joint& j : model.joints) {
-    if (j.static_friction > 0.0 && !mbrt::joint_space(model.solver.scheme)) {
+    if (j.friction.any() && !mbrt::joint_space(model.solver.scheme)) {
       throw ModelError(j.where, "joints." + j.name + ".friction",
                        "joint friction needs a tree scheme, rk4-tree, midpoint-tree or staggered-tree (the scheme is " +
                            std::string(mbrt::scheme_name(model.solver.scheme)) +

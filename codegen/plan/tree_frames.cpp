@@ -166,7 +166,6 @@ TreeFrames plan_tree_frames(const Model& model, const std::vector<ConstraintBloc
     // The joint rate at t = 0, the child's relative to its parent.
     f.armature = j.armature;
     f.friction = j.friction;
-    f.static_friction = j.static_friction;
     f.sign = tb.body == j.body2 ? 1.0 : -1.0;
     f.rate0 = f.sign * joint_rate_at_start(model, j);
     out.frames.push_back(f);

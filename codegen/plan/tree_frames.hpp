@@ -53,8 +53,7 @@ struct TreeFrame {
   // -1 where the tree hangs the joint's body 1 from its body 2.
   double sign = 1.0;
   double armature = 0.0;
-  double friction = 0.0;         // kinetic Coulomb friction torque or force, N m or N (docs/friction.md)
-  double static_friction = 0.0;  // what it holds at rest, >= friction
+  JointFriction friction;  // docs/friction.md
 };
 
 struct TreeFrames {

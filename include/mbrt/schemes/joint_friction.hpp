@@ -18,7 +18,9 @@
 // moves as it should.
 //
 // M provides kFrictionJoints, kFrictionDof, kFrictionLimit (kinetic),
-// kFrictionStaticLimit, kFrictionSweeps
+// kFrictionStaticLimit, kFrictionPerLoad, kFrictionStaticPerLoad (limits per
+// newton of transverse reaction), kFrictionLoads and, where it is true,
+// friction_loads (the transverse reactions at the state), kFrictionSweeps
 // and friction_response (the columns M^-1 P, the articulated-body recursion
 // of Featherstone 2008, "Rigid Body Dynamics Algorithms", table 7.1, with a
 // unit force in one joint and nothing else); State has friction and stuck;
@@ -83,12 +85,20 @@ void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
     for (std::size_t k = 0; k < n; ++k) v += g[k][M::kFrictionDof[i]] * impulse[k];
     return v;
   };
+  std::array<double, n> load{};  // transverse reactions, where limits depend on them
+  if constexpr (M::kFrictionLoads) {
+    // At the frictionless step's end: a splitting, like the impulses.
+    M::body_states(s.q, w.half_angles, s.qd, s);
+    M::friction_loads(s, load);
+  }
   std::array<double, n> p, v, limit;  // impulses, their joints' rates, |p| bounds
   for (std::size_t i = 0; i < n; ++i) {
     // A joint at rest at the step's start (stuck, or started at rest) holds
     // up to its static limit; a sliding one feels the kinetic limit.
     const bool at_rest = s.stuck[i] == 1.0 || w.qd0[M::kFrictionDof[i]] == 0.0;
-    limit[i] = (at_rest ? M::kFrictionStaticLimit[i] : M::kFrictionLimit[i]) * h;
+    limit[i] = (at_rest ? M::kFrictionStaticLimit[i] + M::kFrictionStaticPerLoad[i] * load[i]
+                        : M::kFrictionLimit[i] + M::kFrictionPerLoad[i] * load[i]) *
+               h;
     p[i] = std::fmin(std::fmax(s.friction[i] * h, -limit[i]), limit[i]);  // fmax drops a NaN of a failed step
   }
   for (std::size_t i = 0; i < n; ++i) v[i] = rate(i, p);
