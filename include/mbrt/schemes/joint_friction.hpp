@@ -1,4 +1,4 @@
-// Constant Coulomb friction in the joints of a tree (docs/friction.md), as a
+// Coulomb friction in the joints of a tree (docs/friction.md), as a
 // velocity-level impulse after the step without it: Moreau's sweeping
 // process (Moreau 1988, "Unilateral contact and dry friction in finite
 // freedom dynamics", in Nonsmooth Mechanics and Applications, CISM 302) as
@@ -8,14 +8,16 @@
 // maximal dissipation:
 //   qd+ = qd_free + M(q)^-1 P p,   |p_i| <= T_i h,
 //   p_i = -T_i h sign(qd+_i) where qd+_i != 0 (slip), qd+_i = 0 where |p_i| < T_i h (stick),
-// P placing the joints' impulses among the joint coordinates. With the
-// joints' block G of M^-1 (positive diagonal), each p_i in turn is the
-// clamped value that zeroes its own end-of-step rate: projected
-// Gauss-Seidel, a fixed count of sweeps, warm-started from the last step's
-// impulses; one sweep is exact for one joint. The positions take the
-// impulse as a force p / h constant over the step, h^2/2 M^-1 P p / h: a
-// joint held at rest stays there, and a sliding joint under constant forces
-// moves as it should.
+// P placing the joints' impulses among the joint coordinates, T_i the
+// static limit for a joint at rest at the step's start and the kinetic one
+// otherwise, each a constant plus a multiple of the joint's transverse
+// reaction. With the joints' block G of M^-1 (positive definite), each p_i
+// in turn is the clamped value that zeroes its own end-of-step rate:
+// projected Gauss-Seidel, a fixed count of sweeps, warm-started from the
+// last step's impulses, then one exact solve on the stuck joints. The
+// positions take the impulse as a force p / h constant over the step,
+// h^2/2 M^-1 P p / h, and a joint stuck through the whole step is put back
+// where it started.
 //
 // M provides kFrictionJoints, kFrictionDof, kFrictionLimit (kinetic),
 // kFrictionStaticLimit, kFrictionPerLoad, kFrictionStaticPerLoad (limits per
@@ -24,7 +26,7 @@
 // and friction_response (the columns M^-1 P, the articulated-body recursion
 // of Featherstone 2008, "Rigid Body Dynamics Algorithms", table 7.1, with a
 // unit force in one joint and nothing else); State has friction and stuck;
-// Workspace has friction_columns.
+// Workspace has friction_columns and q0 (the step's start).
 #pragma once
 
 #include <array>
