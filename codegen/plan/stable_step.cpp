@@ -88,6 +88,25 @@ Reach reach(const Model& m) {
   return r;
 }
 
+// Rigid bodies that cannot turn: tied to the ground through prismatic and
+// fixed joints only, which keep their orientation (other joints can only
+// constrain them further).
+std::vector<bool> rotation_locked(const Model& m) {
+  std::vector<bool> locked(m.bodies.size(), false);
+  for (size_t pass = 0; pass <= m.bodies.size(); ++pass) {
+    bool changed = false;
+    for (const Joint& j : m.joints) {
+      if (j.type != JointType::prismatic && j.type != JointType::fixed) continue;
+      for (const auto& [from, to] : {std::pair{j.body1, j.body2}, std::pair{j.body2, j.body1}}) {
+        if (to == kGround || locked[static_cast<size_t>(to)]) continue;
+        if (from == kGround || locked[static_cast<size_t>(from)]) changed = locked[static_cast<size_t>(to)] = true;
+      }
+    }
+    if (!changed) break;
+  }
+  return locked;
+}
+
 double kinetic_energy(const Body& b) {
   double t = 0.5 * b.mass * b.velocity.squaredNorm();
   if (!b.particle) t += 0.5 * b.angular_velocity.dot(b.inertia * b.angular_velocity);
@@ -158,9 +177,10 @@ StableStep estimate_stable_step(const Model& m) {
     }
   }
   s.energy_bound = energy;
+  const std::vector<bool> locked = rotation_locked(m);
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const Body& b = m.bodies[i];
-    if (b.particle) continue;
+    if (b.particle || locked[i]) continue;
     // The inertia about the joint the body hangs from (parallel axes), as if
     // that joint stood still: a whipped tip link turns about it.
     const Eigen::Quaterniond q(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]);
