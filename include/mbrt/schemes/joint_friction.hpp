@@ -121,7 +121,10 @@ void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
     minus_rate[i] = -rate(i, p);
   }
   const std::array<double, n> to_stop = solve_friction_block<M>(g, stuck, minus_rate);
-  for (std::size_t i = 0; i < n; ++i) p[i] = std::fmin(std::fmax(p[i] + to_stop[i], -limit[i]), limit[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    p[i] = std::fmin(std::fmax(p[i] + to_stop[i], -limit[i]), limit[i]);
+    stuck[i] = std::abs(p[i]) < limit[i] ? 1.0 : 0.0;  // at the step's end
+  }
 
   // Positions: the impulse as a force p / h over the step moves them by
   // h/2 G p. A joint stuck at the step's start and at its end is instead
@@ -130,7 +133,7 @@ void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
   std::array<double, n> r, hold, miss;  // position impulses (dq = G r); 1 where held; held joints' offsets
   for (std::size_t i = 0; i < n; ++i) {
     r[i] = (0.5 * h) * p[i];
-    hold[i] = s.stuck[i] * (std::abs(p[i]) < limit[i] ? 1.0 : 0.0);
+    hold[i] = s.stuck[i] * stuck[i];
   }
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t dof = M::kFrictionDof[i];
@@ -152,7 +155,7 @@ void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
   }
   for (std::size_t i = 0; i < n; ++i) {
     s.friction[i] = p[i] / h;
-    s.stuck[i] = std::abs(p[i]) < limit[i] ? 1.0 : 0.0;
+    s.stuck[i] = stuck[i];
   }
   M::half_angles(s.q, w.half_angles);
 }
