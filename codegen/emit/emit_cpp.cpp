@@ -46,6 +46,7 @@ std::string Emitter::header() const {
   }
   o << "}};\n\n";
   index_names(o);
+  if (has_contacts()) contact_declarations(o);
   if (has_inputs()) input_declarations(o);
   if (has_outputs()) output_declarations(o);
   if (tree_scheme()) tree_types(o);
@@ -125,6 +126,18 @@ std::vector<StateField> Emitter::state_fields() const {
   f.push_back({std::string(tree_scheme() ? "" : "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n") +
                    "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n",
                "lambda", "double", "CONSTRAINT_ROWS", "", rows});
+  const int contacts = static_cast<int>(a_.contacts.size());
+  if (contacts > 0) {
+    f.push_back({"  // Contacts by contact:: index (docs/contact.md): the last step's normal force\n"
+                 "  // (N, >= 0), tangential friction force (N, world) and 1 where the contact\n"
+                 "  // stuck, 0 where it slid or was open.\n"
+                 "  std::array<double, kContacts> contact_normal{}, contact_stuck{};\n"
+                 "  std::array<mbrt::Vec3, kContacts> contact_tangential{};\n"
+                 "  static constexpr std::array<const char*, kContacts> contacts{{" + contact_names() + "}};  // their names\n",
+                 "contact_normal", "double", "CONTACTS", "", contacts});
+    f.push_back({"", "contact_stuck", "double", "CONTACTS", "", contacts});
+    f.push_back({"", "contact_tangential", "double", "CONTACTS", "[3]", contacts});
+  }
   if (has_inputs()) {
     f.push_back({"  Inputs inputs;  // applied by step(); initial_state() sets the safe values\n", "inputs", "double",
                  "INPUTS", "", static_cast<int>(m_.inputs.size())});
@@ -343,6 +356,7 @@ void Emitter::model_members(std::ostringstream& o) const {
       friction_constants(o);
       break;
   }
+  if (has_contacts()) contact_members(o);
   o << "\n";
 }
 
@@ -799,6 +813,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
     o << "  const BodyVectors a = accelerations_of(s);\n"
       << "  for (int b = 0; b < kBodies; ++b) s.ali3p_force[b] = -a[b];  // M a = F - B^T lambda\n";
   }
+  if (has_contacts()) o << "  mbrt::start_contacts<Model>(s);\n";
   o << R"(  return s;
 }
 

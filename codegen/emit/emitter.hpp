@@ -253,6 +253,11 @@ class Emitter {
   }
 
   // emit_io.cpp: inputs (State::inputs, applied as loads) and outputs().
+  bool has_contacts() const { return !a_.contacts.empty(); }
+  void contact_declarations(std::ostringstream& o) const;  // kContacts, namespace contact
+  void contact_members(std::ostringstream& o) const;       // struct Model's contact data and body views
+  std::string contact_names() const;
+  int contact_sweeps() const;
   bool has_inputs() const { return !m_.inputs.empty(); }
   bool has_outputs() const { return !m_.outputs.empty(); }
   void input_declarations(std::ostringstream& o) const;   // index constants, ranges, safe values

@@ -131,6 +131,25 @@ struct Force {
   Eigen::Vector3d vector = Eigen::Vector3d::Zero();  // force: world, constant
 };
 
+// A unilateral frictional contact of one body with a fixed plane
+// (docs/contact.md): a body point (point_contact) or a sphere fixed in the
+// body (sphere_contact) that may touch the plane, push on it, never pull, and
+// slide or stick under Coulomb friction, static and kinetic coefficients.
+enum class ContactType { point, sphere };
+
+struct Contact {
+  std::string name;
+  SourceLocation where;
+  ContactType type = ContactType::point;
+  int body = kGround;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();         // world at t = 0: the body point, or the sphere's centre
+  double radius = 0.0;                                     // sphere_contact, m
+  Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();   // world
+  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ(); // unit, world, pointing out of the ground
+  double mu_static = 0.0, mu_kinetic = 0.0;                // mu_static >= mu_kinetic >= 0
+  double restitution = 0.0;                                // Newton's coefficient, 0..1
+};
+
 struct Input {
   std::string name;
   SourceLocation where;
@@ -197,6 +216,7 @@ struct Model {
   std::optional<Eigen::Vector3d> gravity;
   std::vector<Body> bodies;  // "ground" is not listed; it is kGround
   std::vector<Joint> joints;
+  std::vector<Contact> contacts;  // listed under joints: in the file
   std::vector<Force> forces;
   std::vector<Driver> drivers;
   std::vector<Input> inputs;

@@ -45,6 +45,14 @@ const Keys kAli3pKeys = {"alpha",      "relative_shift",        "alpha_of",   "n
 const Keys kFrictionKeys = {"torque",        "force",        "static_torque", "kinetic_torque", "static_force",
                             "kinetic_force", "static",       "kinetic",       "radius"};
 
+// point_contact and sphere_contact (docs/contact.md): listed under joints,
+// with constraint-free unilateral physics of their own.
+const Keys kPointContactKeys = {"name", "type", "body", "point", "plane_point", "plane_normal", "friction", "restitution"};
+const Keys kSphereContactKeys = {"name", "type", "body", "radius", "center", "plane_point", "plane_normal", "friction",
+                                 "restitution"};
+const Keys kContactFrictionKeys = {"static", "kinetic"};
+const Keys kContactTypes = {"point_contact", "sphere_contact"};
+
 const Keys kSchemes(mbrt::kSchemeNames.begin(), mbrt::kSchemeNames.end());
 
 // Axes shorter than this cannot be normalized meaningfully.
@@ -528,7 +536,9 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   Joint j;
   j.where = item.where;
   const Value type = s.get("type");
-  j.type = read_type(type, kJointTypeTable);
+  Keys types = type_names(kJointTypeTable);
+  types.insert(types.end(), kContactTypes.begin(), kContactTypes.end());
+  j.type = *type_named(kJointTypeTable, read_choice(type, types));
   s.restrict_to(joint_keys(j.type), "a " + type.node.Scalar() + " joint");
   // A ground contact may go unnamed: it is then "<body>_<type>".
   const bool contact = type_row(j.type).ground_contact;
@@ -606,6 +616,64 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
       break;  // parse_contact
   }
   return j;
+}
+
+// A joints: entry that is a point_contact or sphere_contact.
+bool is_contact_entry(const Value& item) {
+  if (!item.node.IsMap()) return false;
+  const YAML::Node type = item.node["type"];
+  return type && type.IsScalar() && contains(kContactTypes, type.Scalar());
+}
+
+// A point_contact or sphere_contact (docs/contact.md). Unnamed, it is
+// "<body>_<type>" like the ground contacts.
+Contact parse_unilateral_contact(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
+  Keys every_key = kSphereContactKeys;
+  every_key.push_back("point");
+  const Section s(item, every_key);
+  const Value type = s.get("type");
+  const bool sphere = type.node.Scalar() == "sphere_contact";
+  s.restrict_to(sphere ? kSphereContactKeys : kPointContactKeys, "a " + type.node.Scalar());
+  Contact c;
+  c.where = item.where;
+  c.type = sphere ? ContactType::sphere : ContactType::point;
+  const Value body = s.get("body");
+  c.body = read_body_ref(body, model);
+  if (c.body == kGround) fail(body, "the ground cannot touch itself; name a body");
+  const std::optional<Value> given = s.find("name");
+  c.name = given ? read_identifier(*given) : read_identifier(body) + "_" + type.node.Scalar();
+  check_unique(given ? *given : body, c.name, "joint", names_seen);
+  const Body& b = model.bodies[static_cast<size_t>(c.body)];
+  if (sphere) {
+    c.radius = read_positive(s.get("radius"));
+    const auto center = s.find("center");
+    c.point = center ? read_vector3(*center) : b.position;
+  } else {
+    c.point = read_vector3(s.get("point"));
+  }
+  c.plane_point = read_vector3(s.get("plane_point"));
+  c.plane_normal = read_axis(s.get("plane_normal"));
+  if (auto f = s.find("friction")) {
+    const Section fs(*f, kContactFrictionKeys);
+    const auto given_static = fs.find("static"), given_kinetic = fs.find("kinetic");
+    if (!given_static || !given_kinetic) {
+      fail(given_static ? *given_static : given_kinetic ? *given_kinetic : *f,
+           "give both static and kinetic friction coefficients (static >= kinetic >= 0)");
+    }
+    c.mu_kinetic = read_non_negative(*given_kinetic);
+    c.mu_static = read_non_negative(*given_static);
+    if (c.mu_static < c.mu_kinetic) {
+      fail_expected(*given_static, "a number >= kinetic (" + format_number(c.mu_kinetic) + ")");
+    }
+  }
+  if (auto e = s.find("restitution")) {
+    c.restitution = read_non_negative(*e);
+    if (!(c.restitution <= 1.0)) fail_expected(*e, "a number from 0 to 1");
+  }
+  if (b.particle && sphere) {
+    fail(body, "a sphere_contact needs a rigid body ('" + b.name + "' is a particle); use a point_contact");
+  }
+  return c;
 }
 
 // A joint named by `v` whose type is one of `types`; returns its index.
@@ -874,7 +942,12 @@ Model build_model(const YAML::Node& root, const std::string& file) {
   if (auto joints = s.find("joints"); joints && !is_empty_or_list(*joints, "a list of joints")) {
     std::map<std::string, int> joint_names;
     for (std::size_t i = 0; i < joints->node.size(); ++i) {
-      model.joints.push_back(parse_joint(element(*joints, i), model, joint_names));
+      const Value item = element(*joints, i);
+      if (is_contact_entry(item)) {
+        model.contacts.push_back(parse_unilateral_contact(item, model, joint_names));
+      } else {
+        model.joints.push_back(parse_joint(item, model, joint_names));
+      }
     }
   }
 

@@ -361,6 +361,44 @@ mbrt::Scheme default_scheme(const Model& model) {
                                                                           : mbrt::Scheme::staggered_pcst;
 }
 
+namespace {
+
+// The contacts in body axes. A contact's body moves freely: the impulses
+// act on its mass alone, after the scheme's step, which the constraint forces
+// of a joint would have to share (docs/contact.md).
+std::vector<ContactPlan> contact_plans(const Model& model, const Analysis& a) {
+  std::vector<ContactPlan> plans;
+  for (size_t i = 0; i < model.contacts.size(); ++i) {
+    const Contact& c = model.contacts[i];
+    const std::string key = "joints." + c.name;
+    if (mbrt::joint_space(model.solver.scheme)) {
+      throw ModelError(c.where, key,
+                       "contacts need a scheme in absolute coordinates, e.g. staggered-pcst (the scheme is " +
+                           std::string(mbrt::scheme_name(model.solver.scheme)) + ", whose bodies all hang from joints)");
+    }
+    for (const ConstraintBlock& block : a.constraints) {
+      if (block.body1 == c.body || block.body2 == c.body) {
+        throw ModelError(c.where, key + ".body",
+                         "body '" + model.body_name(c.body) + "' is in " + (block.source == ConstraintSource::joint ? "joint" : "driver") +
+                             " '" + block.name + "': contacts are on free bodies, bodies in no joint or driver (docs/contact.md)");
+      }
+    }
+    const BodyPlan& body = a.bodies[static_cast<size_t>(c.body)];
+    if (body.tunable_mass) {
+      throw ModelError(c.where, key + ".body",
+                       "body '" + model.body_name(c.body) + "' has a tunable mass or inertia: a contact's body takes the file's values");
+    }
+    ContactPlan plan{static_cast<int>(i), c.body, Eigen::Vector3d::Zero(), {}, {}, Eigen::Matrix3d::Zero()};
+    plan.offset = body_point(model, c.body, c.point, c.where, key + (c.type == ContactType::sphere ? ".center" : ".point"));
+    complete_triad(c.plane_normal, plan.tangent1, plan.tangent2);
+    if (body.rigid) plan.inverse_inertia = model.bodies[static_cast<size_t>(c.body)].inertia.inverse();
+    plans.push_back(plan);
+  }
+  return plans;
+}
+
+}  // namespace
+
 Analysis analyse(const Model& model, const Specializations& specialize) {
   Analysis a;
   a.specialize = specialize;
@@ -517,6 +555,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
                            "): the schemes in absolute coordinates do not support it yet (docs/friction.md)");
     }
   }
+  a.contacts = contact_plans(model, a);
   if (mbrt::joint_space(model.solver.scheme)) {
     a.tree_frames = plan_tree_frames(model, a.constraints);
     if (!a.tree_frames.refusal.empty()) {

@@ -57,6 +57,15 @@ struct ForcePlan {
   Eigen::Vector3d point;      // force: body-frame point
 };
 
+// A point_contact or sphere_contact (docs/contact.md) as the step sees it.
+struct ContactPlan {
+  int model_index;                    // Model::contacts
+  int body;                           // Model::bodies
+  Eigen::Vector3d offset;             // body axes: from the COM to the point, or to the sphere's centre
+  Eigen::Vector3d tangent1, tangent2; // world: with the plane's normal a right-handed triad
+  Eigen::Matrix3d inverse_inertia;    // body axes; zero for a particle
+};
+
 // Where an input acts: a torque about axis1 (body-1 axes) on body2 with the
 // reaction on body1, or a force along axis1 at point s2 of body2 with the
 // reaction at point s1 of body1 (joint_force).
@@ -123,6 +132,7 @@ struct Analysis {
   bool nonholonomic = false;                 // rows on velocities only
   std::vector<ForcePlan> forces;
   std::vector<InputPlan> inputs;  // same order as Model::inputs
+  std::vector<ContactPlan> contacts;  // same order as Model::contacts
   FactorPattern pattern;
   bool gravity = false;
   bool velocity_dependent_forces = false;  // gyroscopic or damping terms: two stages per step

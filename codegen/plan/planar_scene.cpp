@@ -170,6 +170,10 @@ std::string joined(const std::vector<std::string>& reasons) {
 PlanarPlan plan_planar(const Model& model, const Analysis& a) {
   PlanarPlan plan;
   if (!a.specialize.planar) return plan;
+  if (!a.contacts.empty()) {
+    plan.refusal = "the model has contacts (docs/contact.md)";
+    return plan;
+  }
   if (a.tunable) {  // the planar kernels fold the model's values
     plan.refusal = "the model has tunable keys (docs/parameters.md)";
     return plan;

@@ -1,6 +1,7 @@
 // Everything a generated model's implementation includes.
 #pragma once
 
+#include "mbrt/contacts.hpp"
 #include "mbrt/dense_cholesky.hpp"
 #include "mbrt/forces.hpp"
 #include "mbrt/free_rotation.hpp"

@@ -22,6 +22,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "mbrt/contacts.hpp"
 #include "mbrt/scheme.hpp"
 #include "mbrt/schemes/staggered.hpp"
 #include "mbrt/schemes/state_checks.hpp"
@@ -141,6 +142,7 @@ StepStatus ali3p_step(typename M::State& s, typename M::Workspace& w) noexcept {
   M::set_accelerations(a, s);
   s.lambda = newton_multipliers<M>(a, s, w);
 
+  contact_step<M>(w.last_good, s);  // unilateral contacts and their friction, docs/contact.md
   if (!finite(s)) {
     s = w.last_good;
     return StepStatus::non_finite;

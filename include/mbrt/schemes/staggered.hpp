@@ -23,6 +23,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "mbrt/contacts.hpp"
 #include "mbrt/scheme.hpp"
 #include "mbrt/schemes/state_checks.hpp"
 #include "mbrt/step_status.hpp"
@@ -247,6 +248,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     }
   }
 
+  contact_step<M>(w.last_good, s);  // unilateral contacts and their friction, docs/contact.md
   if (!finite(s)) {
     s = w.last_good;
     return StepStatus::non_finite;

@@ -1,0 +1,65 @@
+// The contacts' part of a generated model (docs/contact.md): index names,
+// State's contact fields, and the data and body views struct Model hands to
+// mbrt::contact_step (include/mbrt/contacts.hpp).
+#include <algorithm>
+#include <map>
+
+#include "emitter.hpp"
+
+namespace mbrt::codegen {
+
+void Emitter::contact_declarations(std::ostringstream& o) const {
+  o << "// The contacts (docs/contact.md), contact:: indices into State's contact fields.\n"
+    << "inline constexpr int kContacts = " << a_.contacts.size() << ";\nnamespace contact {\n";
+  for (size_t i = 0; i < a_.contacts.size(); ++i) {
+    o << "inline constexpr int " << m_.contacts[i].name << " = " << i << ";\n";
+  }
+  o << "}  // namespace contact\n\n";
+}
+
+std::string Emitter::contact_names() const {
+  std::string names;
+  for (const Contact& c : m_.contacts) names += (names.empty() ? "\"" : ", \"") + c.name + "\"";
+  return names;
+}
+
+// Gauss-Seidel sweeps per step: two settle one contact's normal and
+// tangential impulses where they couple (a point off the line of the
+// centre of mass); bodies with several contacts get four per contact,
+// warm-started from the last step's impulses (docs/contact.md).
+int Emitter::contact_sweeps() const {
+  std::map<int, int> per_body;
+  int most = 0;
+  for (const ContactPlan& c : a_.contacts) most = std::max(most, ++per_body[c.body]);
+  return most <= 1 ? 4 : 4 * most;
+}
+
+void Emitter::contact_members(std::ostringstream& o) const {
+  const double g = m_.gravity ? m_.gravity->norm() : 0.0;
+  o << "static constexpr int kContacts = mbrt::models::" << m_.name << "::kContacts;\n"
+    << "static constexpr int kContactSweeps = " << contact_sweeps() << ";  // Gauss-Seidel sweeps per step\n"
+    << "// Approach speeds below 2 |g| h do not bounce: a resting body settles.\n"
+    << "static constexpr double kBounceSpeed = " << num(2.0 * g * m_.solver.step) << ";\n"
+    << "// offset (body axes), radius, plane point, normal, tangents, 1/m, J^-1 (body axes), mu_s, mu_k, e\n"
+    << "static inline const std::array<mbrt::ContactPoint, kContacts> kContactPoints{{\n";
+  for (const ContactPlan& p : a_.contacts) {
+    const Contact& c = m_.contacts[static_cast<size_t>(p.model_index)];
+    o << "    {" << vec3(p.offset) << ", " << num(c.radius) << ", " << vec3(c.plane_point) << ",\n     "
+      << vec3(c.plane_normal) << ", " << vec3(p.tangent1) << ", " << vec3(p.tangent2) << ",\n     "
+      << num(1.0 / m_.bodies[static_cast<size_t>(p.body)].mass) << ", " << mat3(p.inverse_inertia) << ",\n     "
+      << num(c.mu_static) << ", " << num(c.mu_kinetic) << ", " << num(c.restitution) << "},  // " << c.name << "\n";
+  }
+  o << "}};\n"
+    << "static std::array<mbrt::ContactBody, kContacts> contact_bodies(State& s) noexcept {\n  return {{\n";
+  for (const ContactPlan& p : a_.contacts) {
+    const std::string st = state_of(p.body);
+    if (plan(p.body).rigid) {
+      o << "      {&" << st << ".r, &" << st << ".p, &" << st << ".v, &" << st << ".w},\n";
+    } else {
+      o << "      {&" << st << ".r, nullptr, &" << st << ".v, nullptr},\n";
+    }
+  }
+  o << "  }};\n}\n";
+}
+
+}  // namespace mbrt::codegen
