@@ -169,9 +169,9 @@ Eigen::Matrix<double, n, 1> least_norm_solve(const Eigen::Matrix<double, n, n>& 
 // closed contact pushes and stays inside its cone (the static one where it
 // stuck at the last step).
 template <std::size_t N>
-bool stick_trial(const Eigen::Matrix<double, 3 * int(N), 3 * int(N)>& k, const std::array<double, N>& active,
+void stick_trial(const Eigen::Matrix<double, 3 * int(N), 3 * int(N)>& k, const std::array<double, N>& active,
                  const std::array<Vec3, N>& to_reach, const std::array<double, N>& limit_factor,
-                 std::array<Vec3, N>& impulse) noexcept {
+                 std::array<Vec3, N>& impulse, std::array<bool, N>& holds) noexcept {
   constexpr int n = 3 * static_cast<int>(N);
   Eigen::Matrix<double, n, 1> b, weight = Eigen::Matrix<double, n, 1>::Ones();
   for (std::size_t i = 0; i < N; ++i) b.template segment<3>(3 * static_cast<int>(i)) = active[i] * to_reach[i];
@@ -182,12 +182,10 @@ bool stick_trial(const Eigen::Matrix<double, 3 * int(N), 3 * int(N)>& k, const s
     weight.template segment<3>(3 * static_cast<int>(i)).setConstant(mean / std::max(least[3 * static_cast<int>(i)], 1e-6 * mean));
   }
   const Eigen::Matrix<double, n, 1> x = contact_detail::least_norm_solve<n>(k, b, weight);
-  bool holds = true;
   for (std::size_t i = 0; i < N; ++i) {
     impulse[i] = x.template segment<3>(3 * static_cast<int>(i));
-    holds = holds && impulse[i][0] >= 0.0 && impulse[i].template tail<2>().norm() <= limit_factor[i] * impulse[i][0];
+    holds[i] = impulse[i][0] >= 0.0 && impulse[i].template tail<2>().norm() <= limit_factor[i] * impulse[i][0];
   }
-  return holds;
 }
 
 // The slide trial, where the stick trial fails: every closed contact slides
@@ -199,9 +197,9 @@ bool stick_trial(const Eigen::Matrix<double, 3 * int(N), 3 * int(N)>& k, const s
 // statically indeterminate body do not twist it. Accepted where every closed
 // contact pushes and still slides against its friction at the step's end.
 template <std::size_t N>
-bool slide_trial(const std::array<ContactPoint, N>& data, const Eigen::Matrix<double, 3 * int(N), 3 * int(N)>& lower,
+void slide_trial(const std::array<ContactPoint, N>& data, const Eigen::Matrix<double, 3 * int(N), 3 * int(N)>& lower,
                  const std::array<double, N>& active, const std::array<Vec3, N>& to_reach,
-                 const std::array<Vec3, N>& held, std::array<Vec3, N>& impulse) noexcept {
+                 const std::array<Vec3, N>& held, std::array<Vec3, N>& impulse, std::array<bool, N>& slides) noexcept {
   constexpr int n = static_cast<int>(N);
   const Eigen::Matrix<double, 3 * n, 3 * n> k = lower.template selfadjointView<Eigen::Lower>();
   Eigen::Matrix<double, n, n> a;
@@ -218,16 +216,14 @@ bool slide_trial(const std::array<ContactPoint, N>& data, const Eigen::Matrix<do
   const Eigen::Matrix<double, n, n> normal = a.transpose() * a;
   const Eigen::Matrix<double, n, 1> normal_load =
       contact_detail::least_norm_solve<n>(normal, a.transpose() * b, Eigen::Matrix<double, n, 1>::Ones());
-  bool slides = true;
   for (std::size_t i = 0; i < N; ++i) impulse[i] = normal_load[static_cast<int>(i)] * unit[i];
   for (std::size_t i = 0; i < N; ++i) {
     // The end-of-step slip against the friction: (K P - velocity change to stop) . d <= 0.
     Vec3 change = Vec3::Zero();
     for (std::size_t j = 0; j < N; ++j) change += k.template block<3, 3>(3 * static_cast<int>(i), 3 * static_cast<int>(j)) * impulse[j];
     const double slip = (change - to_reach[i]).template tail<2>().dot(unit[i].template tail<2>());
-    slides = slides && impulse[i][0] >= 0.0 && slip <= 0.0;
+    slides[i] = impulse[i][0] >= 0.0 && slip <= 0.0;
   }
-  return slides;
 }
 
 // (positions and velocities after the smooth step, out of the last step,
@@ -268,8 +264,27 @@ void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<
   }
   const auto k = contact_detail::delassus_matrix(data, bodies, frame, active);
   std::array<Vec3, N> held, slid;
-  const bool holds = stick_trial(k, active, to_reach, limit_factor, held);
-  const bool slides = slide_trial(data, k, active, to_reach, held, slid);
+  std::array<bool, N> holds, slides;
+  stick_trial(k, active, to_reach, limit_factor, held, holds);
+  slide_trial(data, k, active, to_reach, held, slid, slides);
+  // Each body takes a trial where it holds for all its contacts: sticks
+  // where they all stick, else slides where they all slide.
+  std::array<std::size_t, N> owner;  // the index of the body's first contact
+  std::array<bool, N> body_holds, body_slides;
+  for (std::size_t i = 0; i < N; ++i) {
+    owner[i] = i;
+    for (std::size_t j = 0; j < i; ++j) {
+      if (bodies[j].v == bodies[i].v) {
+        owner[i] = owner[j];
+        break;
+      }
+    }
+    body_holds[i] = body_slides[i] = true;
+  }
+  for (std::size_t i = 0; i < N; ++i) {
+    body_holds[owner[i]] = body_holds[owner[i]] && holds[i];
+    body_slides[owner[i]] = body_slides[owner[i]] && slides[i];
+  }
 
   // Else projected Gauss-Seidel, warm-started from the last step's impulses
   // where the contact stays closed: the first half of the sweeps with the
@@ -324,16 +339,18 @@ void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<
       impulse[i] = p;
     }
   }
-  if (holds || slides) {  // a trial's impulses instead
-    for (std::size_t i = 0; i < N; ++i) {
-      *bodies[i].v = start_v[i];
-      if (bodies[i].w) *bodies[i].w = start_w[i];
-    }
-    for (std::size_t i = 0; i < N; ++i) {
-      impulse[i] = holds ? held[i] : slid[i];
-      stuck[i] = holds && held[i][0] > 0.0 ? active[i] : 0.0;
-      contact_detail::apply_impulse(data[i], bodies[i], frame[i], impulse[i]);
-    }
+  // A trial's impulses instead, on the bodies it holds for.
+  for (std::size_t i = 0; i < N; ++i) {
+    if (!body_holds[owner[i]] && !body_slides[owner[i]]) continue;
+    *bodies[i].v = start_v[i];
+    if (bodies[i].w) *bodies[i].w = start_w[i];
+  }
+  for (std::size_t i = 0; i < N; ++i) {
+    const bool hold = body_holds[owner[i]];
+    if (!hold && !body_slides[owner[i]]) continue;
+    impulse[i] = hold ? held[i] : slid[i];
+    stuck[i] = hold && held[i][0] > 0.0 ? active[i] : 0.0;
+    contact_detail::apply_impulse(data[i], bodies[i], frame[i], impulse[i]);
   }
 
   // Positions: the impulses as a constant force over the step, h/2 of the
@@ -342,13 +359,7 @@ void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<
   // body held still would creep).
   std::array<Vec3, N> shift, turn;
   for (std::size_t i = 0; i < N; ++i) {
-    std::size_t first = i;  // the body's first contact holds its sums
-    for (std::size_t j = 0; j < i; ++j) {
-      if (bodies[j].v == bodies[i].v) {
-        first = j;
-        break;
-      }
-    }
+    const std::size_t first = owner[i];  // the body's first contact holds its sums
     const Vec3 p = (0.5 * h) * impulse[i];
     const Vec3 dr = data[i].inverse_mass * (p[0] * data[i].normal + p[1] * data[i].tangent1 + p[2] * data[i].tangent2);
     const Vec3 dtheta = data[i].inverse_inertia * (p[0] * frame[i].arm[0] + p[1] * frame[i].arm[1] + p[2] * frame[i].arm[2]);
