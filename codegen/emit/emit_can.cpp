@@ -22,6 +22,8 @@ struct ValueName {
 };
 
 std::string output_unit(const Model& m, const Output& out, int k) {
+  if (out.type == OutputType::contact_force) return "N";
+  if (out.type == OutputType::contact_stuck) return "";
   if (out.joint < 0) {
     if (out.type == OutputType::body_pose) return k < 3 ? "m" : "";
     return k < 3 ? "m/s" : "rad/s";

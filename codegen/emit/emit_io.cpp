@@ -59,6 +59,7 @@ std::string Emitter::input_target(const Input& in) const {
   return m_.joints[static_cast<size_t>(in.joint)].name;
 }
 std::string Emitter::output_source(const Output& out) const {
+  if (out.contact >= 0) return m_.contacts[static_cast<size_t>(out.contact)].name;
   return out.joint >= 0 ? m_.joints[static_cast<size_t>(out.joint)].name : m_.body_name(out.body);
 }
 bool Emitter::revolute_output(const Output& out) const {
@@ -72,6 +73,8 @@ std::string Emitter::output_layout(const Output& out) const {
     case OutputType::body_velocity: return "vx, vy, vz (m/s, world), wx, wy, wz (rad/s, body)";
     case OutputType::joint_friction: return revolute_output(out) ? "N m" : "N";
     case OutputType::joint_stuck: return "1 stuck, 0 slipping";
+    case OutputType::contact_force: return "normal (N), friction x, y, z (N, world)";
+    case OutputType::contact_stuck: return "1 stuck, 0 sliding or open";
   }
   return "";
 }
@@ -115,6 +118,16 @@ void Emitter::outputs_function(std::ostringstream& o) const {
     if (out.type == OutputType::joint_friction || out.type == OutputType::joint_stuck) {
       o << "  y[output::" << out.name << "] = s." << (out.type == OutputType::joint_friction ? "friction" : "stuck")
         << "[friction::" << m_.joints[static_cast<size_t>(out.joint)].name << "];\n";
+      continue;
+    }
+    if (out.contact >= 0) {
+      const std::string c = "[contact::" + m_.contacts[static_cast<size_t>(out.contact)].name + "]";
+      if (out.type == OutputType::contact_stuck) {
+        o << "  y[output::" << out.name << "] = s.contact_stuck" << c << ";\n";
+      } else {
+        o << "  y[output::" << out.name << "] = s.contact_normal" << c << ";\n"
+          << "  Eigen::Map<mbrt::Vec3>(" << at << " + 1) = s.contact_tangential" << c << ";\n";
+      }
       continue;
     }
     if (out.joint >= 0) {

@@ -167,6 +167,7 @@ struct Output {
   OutputType type = OutputType::joint_position;
   int joint = -1;     // joint_position, joint_velocity
   int body = kGround; // body_pose, body_velocity
+  int contact = -1;   // contact_force, contact_stuck: Model::contacts index
 };
 
 // ali3p (docs/ali3p.md): index-3 augmented Lagrangian with projections.

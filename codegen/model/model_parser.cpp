@@ -887,6 +887,18 @@ Output parse_output(const Value& item, const Model& model, std::map<std::string,
     if (!j.friction.any()) {
       fail(joint, "joint '" + j.name + "' has no friction; give it friction: {torque: N m} or {force: N} (docs/friction.md)");
     }
+  } else if (out.type == OutputType::contact_force || out.type == OutputType::contact_stuck) {
+    const Value contact = s.get("contact");
+    const std::string contact_name = read_string(contact, "a contact's name");
+    for (std::size_t i = 0; i < model.contacts.size(); ++i) {
+      if (model.contacts[i].name == contact_name) out.contact = static_cast<int>(i);
+    }
+    if (out.contact < 0) {
+      std::string names;
+      for (const Contact& c : model.contacts) names += (names.empty() ? "" : ", ") + c.name;
+      fail(contact, "unknown contact '" + excerpt(contact_name) + "' (point_contact and sphere_contact joints: " +
+                        (names.empty() ? "none" : names) + ")");
+    }
   } else if (out.type == OutputType::joint_position || out.type == OutputType::joint_velocity) {
     out.joint = read_joint_ref(s.get("joint"), model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");
   } else {

@@ -4,7 +4,9 @@
 // e0..e3) and body_velocity (vx, vy, vz world; wx, wy, wz body axes) of a
 // body; joint_friction (N m or N, along the joint's coordinate) and
 // joint_stuck (1 stuck, 0 slipping) of a joint with friction, from the last
-// step (docs/friction.md).
+// step (docs/friction.md); contact_force (normal force, then the friction
+// force's x, y, z in world axes, N) and contact_stuck (1 stuck, 0 sliding or
+// open) of a point or sphere contact, from the last step (docs/contact.md).
 #pragma once
 
 #include <array>
@@ -14,8 +16,10 @@
 
 namespace mbrt::codegen {
 
-enum class OutputType { joint_position, joint_velocity, body_pose, body_velocity, joint_friction, joint_stuck };
-inline constexpr std::size_t kOutputTypeCount = 6;  // enumerators of OutputType
+enum class OutputType {
+  joint_position, joint_velocity, body_pose, body_velocity, joint_friction, joint_stuck, contact_force, contact_stuck
+};
+inline constexpr std::size_t kOutputTypeCount = 8;  // enumerators of OutputType
 
 struct OutputTypeRow {
   OutputType type;
@@ -32,6 +36,8 @@ inline constexpr std::array<OutputTypeRow, kOutputTypeCount> kOutputTypeTable{{
     {OutputType::body_velocity,  "body_velocity",  "body",  6},
     {OutputType::joint_friction, "joint_friction", "joint", 1},
     {OutputType::joint_stuck,    "joint_stuck",    "joint", 1},
+    {OutputType::contact_force,  "contact_force",  "contact", 4},
+    {OutputType::contact_stuck,  "contact_stuck",  "contact", 1},
 }};
 static_assert(rows_in_enum_order(kOutputTypeTable), "kOutputTypeTable needs one row per OutputType, in enum order");
 

@@ -107,6 +107,24 @@ std::vector<bool> rotation_locked(const Model& m) {
   return locked;
 }
 
+// Rigid bodies in no joint or driver with equal principal moments (a ball
+// on contacts, docs/contact.md): no gyroscopic torque, and their rotation
+// moves no joint, so its rate does not bound the step (every scheme turns
+// the Euler parameters by an orthogonal map).
+std::vector<bool> free_isotropic(const Model& m) {
+  std::vector<bool> out(m.bodies.size(), false);
+  for (size_t i = 0; i < m.bodies.size(); ++i) {
+    const Eigen::Matrix3d& inertia = m.bodies[i].inertia;
+    out[i] = !m.bodies[i].particle && inertia.isApprox(inertia(0, 0) * Eigen::Matrix3d::Identity(), 1e-12);
+  }
+  const auto joined = [&](int b) {
+    if (b != kGround) out[static_cast<size_t>(b)] = false;
+  };
+  for (const Joint& j : m.joints) joined(j.body1), joined(j.body2);
+  for (const Driver& d : m.drivers) joined(d.body1), joined(d.body2);
+  return out;
+}
+
 double kinetic_energy(const Body& b) {
   double t = 0.5 * b.mass * b.velocity.squaredNorm();
   if (!b.particle) t += 0.5 * b.angular_velocity.dot(b.inertia * b.angular_velocity);
@@ -178,9 +196,10 @@ StableStep estimate_stable_step(const Model& m) {
   }
   s.energy_bound = energy;
   const std::vector<bool> locked = rotation_locked(m);
+  const std::vector<bool> free_sphere = free_isotropic(m);
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const Body& b = m.bodies[i];
-    if (b.particle || locked[i]) continue;
+    if (b.particle || locked[i] || free_sphere[i]) continue;
     // The inertia about the joint the body hangs from (parallel axes), as if
     // that joint stood still: a whipped tip link turns about it.
     const Eigen::Quaterniond q(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]);

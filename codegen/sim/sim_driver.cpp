@@ -74,6 +74,24 @@ void write_friction(std::FILE* f, const State& s) {
   }
 }
 
+// With --reactions, each contact's normal force, friction force (world) and
+// whether it stuck (docs/contact.md), where the model has contacts.
+template <class State>
+void write_contacts_header(std::FILE* f) {
+  if constexpr (requires { State::contacts; }) {
+    for (const char* c : State::contacts) std::fprintf(f, ",%s.normal,%s.fx,%s.fy,%s.fz,%s.stuck", c, c, c, c, c);
+  }
+}
+template <class State>
+void write_contacts(std::FILE* f, const State& s) {
+  if constexpr (requires { State::contacts; }) {
+    for (std::size_t i = 0; i < s.contact_normal.size(); ++i) {
+      const auto& t = s.contact_tangential[i];
+      std::fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g", s.contact_normal[i], t[0], t[1], t[2], s.contact_stuck[i]);
+    }
+  }
+}
+
 void write_header(std::FILE* f, const Options& o) {
   const bool velocities = o.velocities;
   std::fprintf(f, "t");
@@ -90,6 +108,7 @@ void write_header(std::FILE* f, const Options& o) {
       for (const char* q : {"fx", "fy", "fz", "tx", "ty", "tz"}) std::fprintf(f, ",%s.%s", c.name, q);
     }
     write_friction_header<model::State>(f);
+    write_contacts_header<model::State>(f);
   }
   std::fprintf(f, "\n");
 }
@@ -124,6 +143,7 @@ void write_row(std::FILE* f, const model::State& s, const Options& o) {
       write_vec(f, j.torque.data(), 3);
     }
     write_friction(f, s);
+    write_contacts(f, s);
   }
   std::fprintf(f, "\n");
 }
