@@ -258,6 +258,7 @@ class Emitter {
   void contact_members(std::ostringstream& o) const;       // struct Model's contact data and body views
   std::string contact_names() const;
   int contact_sweeps() const;
+  std::string contact_groups() const;  // struct Model's kContactGroups
   bool has_inputs() const { return !m_.inputs.empty(); }
   bool has_outputs() const { return !m_.outputs.empty(); }
   void input_declarations(std::ostringstream& o) const;   // index constants, ranges, safe values

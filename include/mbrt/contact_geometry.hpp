@@ -1,0 +1,92 @@
+// The pieces of a contact (docs/contact.md): its constant data, the body
+// state it acts on, its geometry at the current positions, and what an
+// impulse at it does to the body's velocity and position.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "mbrt/rotation.hpp"
+#include "mbrt/types.hpp"
+
+namespace mbrt {
+
+// A contact's constant data (generated from the model file).
+struct ContactPoint {
+  Vec3 offset;                      // body axes: from the COM to the point, or to the sphere's centre
+  double radius;                    // sphere; 0 for a point
+  Vec3 plane_point;                 // world
+  Vec3 normal, tangent1, tangent2;  // world, right-handed, normal out of the ground
+  double inverse_mass;
+  Mat3 inverse_inertia;             // body axes; zero for a particle
+  double mu_static, mu_kinetic, restitution;
+};
+
+// Where a contact's body keeps its state; p and w are null for a particle.
+struct ContactBody {
+  Vec3* r;
+  EulerParameters* p;
+  Vec3* v;
+  Vec3* w;
+};
+
+namespace contact_detail {
+
+// A contact's geometry at the current positions: the direction of each
+// impulse component in body-axes angular terms (rho x R^T e), and the gap.
+struct Frame {
+  Mat3 rt;             // R^T (identity for a particle)
+  Vec3 rho;            // body axes: from the COM to the contact point
+  std::array<Vec3, 3> arm;  // rho x R^T e_k, k = normal, tangent1, tangent2
+  double gap;          // distance of the contact point above the plane (m)
+};
+
+inline Frame frame_of(const ContactPoint& c, const ContactBody& b) noexcept {
+  Frame f;
+  f.rt = b.p ? Mat3(rotation_matrix(*b.p).transpose()) : Mat3(Mat3::Identity());
+  f.rho = c.offset - c.radius * (f.rt * c.normal);
+  const Vec3 point = *b.r + f.rt.transpose() * f.rho;
+  f.gap = c.normal.dot(point - c.plane_point);
+  const Vec3* e[3] = {&c.normal, &c.tangent1, &c.tangent2};
+  for (int k = 0; k < 3; ++k) f.arm[k] = b.p ? Vec3(f.rho.cross(f.rt * *e[k])) : Vec3(Vec3::Zero());
+  return f;
+}
+
+// The contact point's velocity along (normal, tangent1, tangent2).
+inline Vec3 point_velocity(const ContactPoint& c, const ContactBody& b, const Frame& f) noexcept {
+  Vec3 u(c.normal.dot(*b.v), c.tangent1.dot(*b.v), c.tangent2.dot(*b.v));
+  if (b.w) {
+    for (int k = 0; k < 3; ++k) u[k] += f.arm[k].dot(*b.w);
+  }
+  return u;
+}
+
+// The body's velocity change from an impulse dP (normal, tangent1, tangent2) at the point.
+inline void apply_impulse(const ContactPoint& c, const ContactBody& b, const Frame& f, const Vec3& dp) noexcept {
+  *b.v += c.inverse_mass * (dp[0] * c.normal + dp[1] * c.tangent1 + dp[2] * c.tangent2);
+  if (b.w) *b.w += c.inverse_inertia * (dp[0] * f.arm[0] + dp[1] * f.arm[1] + dp[2] * f.arm[2]);
+}
+
+// The body's displacement from a position impulse dP: translation and a
+// body-axes rotation, the same directions as the velocity change.
+inline void displace(const ContactPoint& c, const ContactBody& b, const Frame& f, const Vec3& dp) noexcept {
+  *b.r += c.inverse_mass * (dp[0] * c.normal + dp[1] * c.tangent1 + dp[2] * c.tangent2);
+  if (b.p) {
+    const Vec3 theta = c.inverse_inertia * (dp[0] * f.arm[0] + dp[1] * f.arm[1] + dp[2] * f.arm[2]);
+    *b.p = quaternion_product(*b.p, cayley_increment(theta));
+  }
+}
+
+// The contact's 3x3 block of the Delassus matrix J M^-1 J^T.
+inline Mat3 delassus_block(const ContactPoint& c, const Frame& f) noexcept {
+  Mat3 d = c.inverse_mass * Mat3::Identity();
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 m = c.inverse_inertia * f.arm[k];
+    for (int l = 0; l < 3; ++l) d(l, k) += f.arm[l].dot(m);
+  }
+  return d;
+}
+
+}  // namespace contact_detail
+
+}  // namespace mbrt
