@@ -33,6 +33,8 @@
 #include "contact_incline.hpp"
 #include "contact_incline_ali3p.hpp"
 #include "contact_incline_rk4.hpp"
+#include "analysis.hpp"
+#include "model.hpp"
 
 namespace {
 
@@ -237,4 +239,70 @@ TEST_CASE("the contact step allocates nothing, whatever touches, sticks, slides 
   AllocationCounter incline_counter;
   for (int i = 0; i < 10; ++i) REQUIRE(inc::step(si, wi) == mbrt::StepStatus::ok);
   CHECK(incline_counter.count() == 0);
+}
+
+namespace {
+
+// A ball on the plane, with `extra` keys in its contact and `more` after.
+std::string ball_with(const std::string& extra, const std::string& more = "",
+                      const std::string& type = "sphere_contact, radius: 0.1") {
+  return "name: b\ngravity: [0, 0, -9.81]\nbodies:\n"
+         "  - {name: ball, mass: 1, inertia: [0.004, 0.004, 0.004], position: [0, 0, 0.1]}\n"
+         "  - {name: dot, mass: 1, particle: true, position: [1, 0, 0]}\n"
+         "joints:\n"
+         "  - {name: tyre, type: " + type + ", body: ball, plane_point: [0, 0, 0], plane_normal: [0, 0, 1]" + extra + "}\n" +
+         more;
+}
+
+// The error's text (file:line: key: message) for a model that must fail.
+std::string error_of(const std::string& yaml) {
+  try {
+    mbrt::codegen::analyse(mbrt::codegen::parse_model(yaml, "ball.yaml"));
+  } catch (const mbrt::codegen::ModelError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("contact keys: errors name the file, line and key") {
+  const mbrt::codegen::Model ok = mbrt::codegen::parse_model(ball_with(", friction: {static: 0.5, kinetic: 0.4}, restitution: 0.5"), "ball.yaml");
+  REQUIRE(ok.contacts.size() == 1);
+  CHECK(ok.joints.empty());
+  CHECK(ok.contacts[0].mu_static == 0.5);
+  CHECK(ok.contacts[0].mu_kinetic == 0.4);
+  CHECK(ok.contacts[0].restitution == 0.5);
+  CHECK(ok.contacts[0].point == Eigen::Vector3d(0, 0, 0.1));  // the centre: the body's position by default
+  CHECK(error_of(ball_with(", friction: {static: 0.5, kinetic: 0.4}")) == "(no error)");
+  const auto check = [](const std::string& yaml, const std::string& line, const std::string& key, const std::string& phrase) {
+    const std::string what = error_of(yaml);
+    INFO(what);
+    CHECK(what.find("ball.yaml:" + line) != std::string::npos);
+    CHECK(what.find(key) != std::string::npos);
+    CHECK(what.find(phrase) != std::string::npos);
+  };
+  check(ball_with(", friction: {static: 0.3, kinetic: 0.4}"), "7", "joints[0].friction.static", "expected a number >= kinetic (0.4)");
+  check(ball_with(", friction: {static: 0.3}"), "7", "joints[0].friction.static", "give both static and kinetic");
+  check(ball_with(", friction: {kinetic: -0.1, static: 0.3}"), "7", "joints[0].friction.kinetic", "expected a number >= 0");
+  check(ball_with(", friction: {torque: 0.3}"), "7", "joints[0].friction.torque", "unknown key 'torque'");
+  check(ball_with(", restitution: 1.5"), "7", "joints[0].restitution", "expected a number from 0 to 1");
+  check(ball_with(", point: [0, 0, 0]"), "7", "joints[0].point", "does not apply to a sphere_contact");
+  check(ball_with("", "", "point_contact, radius: 0.1"), "7", "joints[0].radius", "does not apply to a point_contact");
+  check(ball_with("", "", "sphere_contact"), "7", "joints[0].radius", "missing required key 'radius'");
+  check(ball_with("").replace(ball_with("").find("body: ball"), 10, "body: dot"), "7", "joints[0].body",
+        "a sphere_contact needs a rigid body ('dot' is a particle)");
+  check(ball_with("").replace(ball_with("").find("body: ball"), 10, "body: ground"), "7", "joints[0].body",
+        "the ground cannot touch itself");
+  // A contact's body moves freely: no joint, no tree scheme, no tunable mass.
+  check(ball_with("", "  - {name: pin, type: spherical, body1: ground, body2: ball, point: [0, 0, 0]}\n"), "7",
+        "joints.tyre.body", "body 'ball' is in joint 'pin': contacts are on free bodies");
+  check(ball_with("", "solver: {scheme: rk4-tree}\n"), "7", "joints.tyre",
+        "contacts need a scheme in absolute coordinates");
+  check(ball_with("", "tunable: [ball.mass]\n"), "7", "joints.tyre.body", "has a tunable mass or inertia");
+  // Outputs name a contact.
+  check(ball_with("", "outputs:\n  - {name: f, type: contact_force, contact: wheel}\n"), "9", "outputs[0].contact",
+        "unknown contact 'wheel' (point_contact and sphere_contact joints: tyre)");
+  CHECK(error_of(ball_with("", "outputs:\n  - {name: f, type: contact_force, contact: tyre}\n"
+                               "  - {name: s, type: contact_stuck, contact: tyre}\n")) == "(no error)");
 }
