@@ -757,7 +757,7 @@ joints:
 )",
                     "joints[0].type", 6,
                     "expected one of: spherical, revolute, universal, cylindrical, prismatic, fixed, "
-                    "distance, screw, planar, rolling_disk, rolling_ball, knife_edge, velocity_toward, got 'hinge'");
+                    "distance, screw, planar, rolling_disk, rolling_ball, knife_edge, velocity_toward, point_contact, sphere_contact, got 'hinge'");
 }
 
 TEST_CASE("a zero-length axis is rejected") {
@@ -1083,7 +1083,7 @@ std::string item_with(const Keys& keys, const std::string& type_name, const std:
       {"plane_point", "[0, 0, 0]"}, {"plane_normal", "[0, 0, 1]"}, {"stiffness", "10"}, {"damping", "1"},
       {"rest_length", "0.5"},    {"value", "1"},           {"vector", "[1, 0, 0]"},   {"function", "{polynomial: [0]}"},
       {"min", "-1"},             {"max", "1"},             {"safe", "0"},             {"rest", "0.1"},
-      {"armature", "0"}};
+      {"armature", "0"},         {"contact", "touch"}};
   std::map<std::string, std::string> values = kValues;
   values["type"] = type_name;
   values["friction"] = type_name == "prismatic" ? "{force: 0}" : "{torque: 0}";  // none: any scheme takes it
@@ -1189,6 +1189,13 @@ TEST_CASE("every output type has a table row whose name and keys make an output 
     std::string item = item_with(output_keys(type), row.name);
     if (const std::size_t at = item.find("joint: slide"); at != std::string::npos) item.replace(at, 12, "joint: pin");
     std::string scene = scene_with("outputs:\n" + item);
+    // Contact outputs name a contact (of a free body).
+    if (type == OutputType::contact_force || type == OutputType::contact_stuck) {
+      scene.replace(scene.find("joints:\n"), 8,
+                    "  - {name: ball, mass: 1, inertia: [1, 1, 1], position: [2, 0, 0.1]}\njoints:\n"
+                    "  - {name: touch, type: sphere_contact, body: ball, radius: 0.1, plane_point: [0, 0, 0], "
+                    "plane_normal: [0, 0, 1]}\n");
+    }
     // Friction outputs name a joint with friction.
     if (type == OutputType::joint_friction || type == OutputType::joint_stuck) {
       const std::string pin_end = "axis: [0, 0, 1]}";
