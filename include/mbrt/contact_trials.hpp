@@ -38,6 +38,14 @@ struct ContactProblem {
 
 namespace contact_detail {
 
+// The group's contacts (its entries before the first pad).
+template <std::size_t G>
+int members(const ContactGroup<G>& group) noexcept {
+  int m = 0;
+  while (m < static_cast<int>(G) && group[static_cast<std::size_t>(m)] >= 0) ++m;
+  return m;
+}
+
 // The body's block of K, lower triangle, 3 rows per contact (normal,
 // tangent1, tangent2); an open contact's and a pad's rows are identity.
 template <std::size_t N, std::size_t G>
@@ -47,7 +55,7 @@ Eigen::Matrix<double, 3 * int(G), 3 * int(G)> delassus_matrix(const std::array<C
   constexpr int n = 3 * static_cast<int>(G);
   Eigen::Matrix<double, n, n> k = Eigen::Matrix<double, n, n>::Zero();
   for (std::size_t li = 0; li < G; ++li) {
-    const int i = group[li], ri = 3 * static_cast<int>(li);
+    const int i = group[li], ri = 3 * static_cast<int>(li);  // pads (i < 0) come last
     const double active = i < 0 ? 0.0 : p.active[static_cast<std::size_t>(i)];
     for (int a = 0; a < 3; ++a) k(ri + a, ri + a) = 1.0 - active;
     if (i < 0) continue;
@@ -70,19 +78,44 @@ Eigen::Matrix<double, 3 * int(G), 3 * int(G)> delassus_matrix(const std::array<C
 // A body on several contacts is statically indeterminate: many impulses
 // give it the same motion. A shift eps D of K's diagonal picks the one of
 // least weighted norm (the limit of (K + eps D)^-1 b; Tikhonov), here with
-// eps D = 1e-10 diag(K) times weight, and one refinement on K itself.
+// eps D = 1e-10 diag(K) times weight, and one refinement on K itself. Only
+// the leading `used` rows (the body's contacts; pads follow) are solved, so
+// a body pays for its own contacts, not for the body with the most.
 template <int n>
 Eigen::Matrix<double, n, 1> least_norm_solve(const Eigen::Matrix<double, n, n>& k, const Eigen::Matrix<double, n, 1>& b,
-                                             const Eigen::Matrix<double, n, 1>& weight) noexcept {
-  Eigen::Matrix<double, n, n> l = k;
-  for (int r = 0; r < n; ++r) l(r, r) += 1e-10 * k(r, r) * weight[r];
-  Eigen::Matrix<double, n, 1> x = b;
-  cholesky_in_place(l);
-  solve_lower(l, x);
-  solve_lower_transposed(l, x);
-  Eigen::Matrix<double, n, 1> r = b - k.template selfadjointView<Eigen::Lower>() * x;
-  solve_lower(l, r);
-  solve_lower_transposed(l, r);
+                                             const Eigen::Matrix<double, n, 1>& weight, int rows) noexcept {
+  const int used = std::min(std::max(rows, 0), n);
+  Eigen::Matrix<double, n, n> l = Eigen::Matrix<double, n, n>::Zero();
+  for (int j = 0; j < used; ++j) {  // Cholesky of the shifted leading block, lower triangle
+    double d = k(j, j) * (1.0 + 1e-10 * weight[j]);
+    for (int q = 0; q < j; ++q) d -= l(j, q) * l(j, q);
+    l(j, j) = std::sqrt(d > 0.0 ? d : 1.0);
+    for (int i = j + 1; i < used; ++i) {
+      double e = k(i, j);
+      for (int q = 0; q < j; ++q) e -= l(i, q) * l(j, q);
+      l(i, j) = e / l(j, j);
+    }
+  }
+  const auto solve = [&](Eigen::Matrix<double, n, 1>& y) {
+    for (int i = 0; i < used; ++i) {
+      for (int q = 0; q < i; ++q) y[i] -= l(i, q) * y[q];
+      y[i] /= l(i, i);
+    }
+    for (int i = used - 1; i >= 0; --i) {
+      for (int q = i + 1; q < used; ++q) y[i] -= l(q, i) * y[q];
+      y[i] /= l(i, i);
+    }
+  };
+  Eigen::Matrix<double, n, 1> x = Eigen::Matrix<double, n, 1>::Zero();
+  for (int i = 0; i < used; ++i) x[i] = b[i];
+  solve(x);
+  Eigen::Matrix<double, n, 1> r = Eigen::Matrix<double, n, 1>::Zero();
+  for (int i = 0; i < used; ++i) {  // b - K x, K from its lower triangle
+    double e = b[i];
+    for (int q = 0; q < used; ++q) e -= (q <= i ? k(i, q) : k(q, i)) * x[q];
+    r[i] = e;
+  }
+  solve(r);
   return x + r;
 }
 
@@ -107,13 +140,14 @@ bool stick_trial(const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k, const C
       b.template segment<3>(3 * static_cast<int>(l)) = p.active[i] * p.to_reach[i];
     }
   }
-  const Eigen::Matrix<double, n, 1> least = contact_detail::least_norm_solve<n>(k, b, weight);
+  const int used = 3 * contact_detail::members(group);
+  const Eigen::Matrix<double, n, 1> least = contact_detail::least_norm_solve<n>(k, b, weight, used);
   double mean = 1e-300;
-  for (std::size_t l = 0; l < G; ++l) mean += std::abs(least[3 * static_cast<int>(l)]) / static_cast<double>(G);
+  for (int r = 0; r < used; r += 3) mean += std::abs(least[r]) / static_cast<double>(used / 3);
   for (std::size_t l = 0; l < G; ++l) {
     weight.template segment<3>(3 * static_cast<int>(l)).setConstant(mean / std::max(least[3 * static_cast<int>(l)], 1e-6 * mean));
   }
-  const Eigen::Matrix<double, n, 1> x = contact_detail::least_norm_solve<n>(k, b, weight);
+  const Eigen::Matrix<double, n, 1> x = contact_detail::least_norm_solve<n>(k, b, weight, used);
   bool holds = true;
   for (std::size_t l = 0; l < G; ++l) {
     if (group[l] < 0) continue;
@@ -134,39 +168,37 @@ bool stick_trial(const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k, const C
 // every closed contact pushes and still slides against its friction at the
 // step's end.
 template <std::size_t N, std::size_t G>
-bool slide_trial(const std::array<ContactPoint, N>& data, const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& lower,
+bool slide_trial(const std::array<ContactPoint, N>& data, const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k,
                  const ContactProblem<N>& p, const ContactGroup<G>& group, const std::array<Vec3, N>& held,
                  std::array<Vec3, N>& impulse) noexcept {
   constexpr int n = static_cast<int>(G);
-  const Eigen::Matrix<double, 3 * n, 3 * n> k = lower.template selfadjointView<Eigen::Lower>();
-  std::array<Vec3, G> unit;  // the impulse per unit normal impulse: (1, mu_k d); a pad's is (1, 0, 0)
+  const int used = contact_detail::members(group);
+  const auto block = [&](int r, int c) {  // K's 3x3 block, from its lower triangle
+    return r >= c ? Mat3(k.template block<3, 3>(3 * r, 3 * c)) : Mat3(k.template block<3, 3>(3 * c, 3 * r).transpose());
+  };
+  std::array<Vec3, G> unit;  // the impulse per unit normal impulse: (1, mu_k d)
   Eigen::Matrix<double, n, 1> b = Eigen::Matrix<double, n, 1>::Zero();
-  for (std::size_t l = 0; l < G; ++l) {
-    unit[l] = Vec3::UnitX();
-    if (group[l] < 0) continue;
-    const std::size_t i = static_cast<std::size_t>(group[l]);
+  for (int l = 0; l < used; ++l) {
+    const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
     const Eigen::Vector2d hold = held[i].template tail<2>();
-    unit[l].template tail<2>() = (p.active[i] * data[i].mu_kinetic / std::max(hold.norm(), 1e-300)) * hold;
-    b[static_cast<int>(l)] = p.active[i] * p.to_reach[i][0];
+    unit[static_cast<std::size_t>(l)] << 1.0, (p.active[i] * data[i].mu_kinetic / std::max(hold.norm(), 1e-300)) * hold;
+    b[l] = p.active[i] * p.to_reach[i][0];
   }
-  Eigen::Matrix<double, n, n> a;
-  for (int r = 0; r < n; ++r) {
-    for (int c = 0; c < n; ++c) a(r, c) = k.template block<1, 3>(3 * r, 3 * c).dot(unit[static_cast<std::size_t>(c)]);
+  Eigen::Matrix<double, n, n> a = Eigen::Matrix<double, n, n>::Zero();
+  for (int r = 0; r < used; ++r) {
+    for (int c = 0; c < used; ++c) a(r, c) = block(r, c).row(0).dot(unit[static_cast<std::size_t>(c)]);
   }
   const Eigen::Matrix<double, n, 1> normal_load = contact_detail::least_norm_solve<n>(
       Eigen::Matrix<double, n, n>(a.transpose() * a), Eigen::Matrix<double, n, 1>(a.transpose() * b),
-      Eigen::Matrix<double, n, 1>::Ones());
+      Eigen::Matrix<double, n, 1>::Ones(), used);
   bool slides = true;
-  for (std::size_t l = 0; l < G; ++l) {
-    if (group[l] < 0) continue;
-    const std::size_t i = static_cast<std::size_t>(group[l]);
-    impulse[i] = normal_load[static_cast<int>(l)] * unit[l];
+  for (int l = 0; l < used; ++l) {
+    const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
+    impulse[i] = normal_load[l] * unit[static_cast<std::size_t>(l)];
     // The end-of-step slip against the friction: (K P - velocity change to stop) . d <= 0.
     Vec3 change = Vec3::Zero();
-    for (std::size_t m = 0; m < G; ++m) {
-      change += k.template block<3, 3>(3 * static_cast<int>(l), 3 * static_cast<int>(m)) * (normal_load[static_cast<int>(m)] * unit[m]);
-    }
-    const double slip = (change - p.to_reach[i]).template tail<2>().dot(unit[l].template tail<2>());
+    for (int m = 0; m < used; ++m) change += block(l, m) * (normal_load[m] * unit[static_cast<std::size_t>(m)]);
+    const double slip = (change - p.to_reach[i]).template tail<2>().dot(unit[static_cast<std::size_t>(l)].template tail<2>());
     slides = slides && impulse[i][0] >= 0.0 && slip <= 0.0;
   }
   return slides;
