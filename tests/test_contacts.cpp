@@ -36,6 +36,7 @@
 #include "contact_tumble.hpp"
 #include "contact_tumble_rk4.hpp"
 #include "analysis.hpp"
+#include "emit_can.hpp"
 #include "model.hpp"
 
 namespace {
@@ -266,6 +267,43 @@ TEST_CASE("a light body tumbling onto the plane on eight corners comes to rest o
     namespace m = mbrt::models::contact_tumble_rk4;
     check_tumble(m::initial_state(), [](m::State& s) { return m::step(s); }, [](const m::State& s) { return m::energy(s).total(); });
   }
+}
+
+TEST_CASE("contact outputs: the last step's forces and stick state, with their CAN units") {
+  namespace m = mbrt::models::contact_balls;
+  m::State s = m::initial_state();
+  m::Outputs y;
+  for (int n = 0; n < 100; ++n) REQUIRE(m::step(s) == mbrt::StepStatus::ok);  // sliding
+  m::outputs(s, y);
+  CHECK(y[m::output::tyre_force] == doctest::Approx(2.0 * kG).epsilon(1e-12));
+  CHECK(y[m::output::tyre_force + 1] == doctest::Approx(-0.3 * 2.0 * kG).epsilon(1e-12));  // against +x
+  CHECK(y[m::output::tyre_force + 2] == 0.0);
+  CHECK(y[m::output::tyre_force + 3] == 0.0);
+  CHECK(y[m::output::tyre_stuck] == 0.0);
+  for (int n = 0; n < 200; ++n) REQUIRE(m::step(s) == mbrt::StepStatus::ok);  // rolling
+  m::outputs(s, y);
+  CHECK(y[m::output::tyre_stuck] == 1.0);
+  CHECK(std::abs(y[m::output::tyre_force + 1]) < 1e-12);
+  // The CAN description: forces in N, the stick state without a unit.
+  const mbrt::codegen::Model model = mbrt::codegen::parse_model(
+      "name: b\ngravity: [0, 0, -9.81]\nbodies:\n"
+      "  - {name: ball, mass: 1, inertia: [0.004, 0.004, 0.004], position: [0, 0, 0.1]}\n"
+      "joints:\n  - {name: tyre, type: sphere_contact, body: ball, radius: 0.1, plane_point: [0, 0, 0], plane_normal: [0, 0, 1]}\n"
+      "outputs:\n  - {name: f, type: contact_force, contact: tyre}\n  - {name: s, type: contact_stuck, contact: tyre}\n",
+      "ball.yaml");
+  std::string dbc;
+  for (const auto& file : mbrt::codegen::emit_can(model, false)) {
+    if (file.name.size() > 4 && file.name.substr(file.name.size() - 4) == ".dbc") dbc = file.text;
+  }
+  REQUIRE_FALSE(dbc.empty());
+  for (const char* signal : {"SG_ f_0 ", "SG_ f_1 ", "SG_ f_2 ", "SG_ f_3 "}) {
+    const std::size_t at = dbc.find(signal);
+    REQUIRE(at != std::string::npos);
+    CHECK(dbc.substr(at, dbc.find('\n', at) - at).find("\"N\"") != std::string::npos);
+  }
+  const std::size_t at = dbc.find("SG_ s ");
+  REQUIRE(at != std::string::npos);
+  CHECK(dbc.substr(at, dbc.find('\n', at) - at).find("\"\"") != std::string::npos);
 }
 
 TEST_CASE("the contact step allocates nothing, whatever touches, sticks, slides or bounces") {

@@ -128,3 +128,28 @@ TEST_CASE("staggered-tree warns of its energy on trees of several links above 1e
   rod.solver.scheme = mbrt::Scheme::staggered_tree;
   CHECK(mbrt::codegen::tree_energy_warning(rod).empty());
 }
+
+TEST_CASE("a free ball's spin does not bound the step; a free body that can tumble does") {
+  // A 10 g, 1 cm ball at 1000 rad/s on a contact and a 2 kg ball launched at
+  // 2 m/s: the scene's energy would turn the small ball at 4580 rad/s, but a
+  // free body with equal moments has no gyroscopic torque and moves no joint.
+  const std::string balls = R"(name: balls
+gravity: [0, 0, -9.81]
+bodies:
+  - {name: spinner, mass: 0.01, inertia: [4.0e-7, 4.0e-7, 4.0e-7], position: [0, 1, 0.01], angular_velocity: [0, 1000, 0]}
+  - {name: slider, mass: 2.0, inertia: [0.008, 0.008, 0.008], position: [0, 0, 0.1], velocity: [2, 0, 0]}
+joints:
+  - {type: sphere_contact, body: spinner, radius: 0.01, plane_point: [0, 0, 0], plane_normal: [0, 0, 1]}
+  - {type: sphere_contact, body: slider, radius: 0.1, plane_point: [0, 0, 0], plane_normal: [0, 0, 1]}
+solver: {scheme: staggered-pcst, step: 1.0e-3}
+)";
+  const auto free = estimate_stable_step(parse_model(balls, "balls.yaml"));
+  CHECK(free.fastest_rotation == 0.0);
+  CHECK_FALSE(free.exceeded);
+  // The same small body with unequal moments tumbles: its rate bounds the step.
+  std::string tumbling = balls;
+  tumbling.replace(tumbling.find("[4.0e-7, 4.0e-7, 4.0e-7]"), 24, "[4.0e-7, 5.0e-7, 3.0e-7]");
+  const auto s = estimate_stable_step(parse_model(tumbling, "balls.yaml"));
+  CHECK(s.fastest_body == "spinner");
+  CHECK(s.exceeded);
+}
