@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 
 #include "mbrt/rotation.hpp"
@@ -31,6 +32,11 @@ struct ContactBody {
 };
 
 namespace contact_detail {
+
+// max(x, 0) and max(x, floor) without a branch (std::max may compile to
+// one): the contact step does the same work whatever the contacts do.
+inline double positive_part(double x) noexcept { return 0.5 * (x + std::abs(x)); }
+inline double at_least(double x, double floor) noexcept { return floor + positive_part(x - floor); }
 
 // A contact's geometry at the current positions: the direction of each
 // impulse component in body-axes angular terms (rho x R^T e), and the gap.

@@ -89,7 +89,8 @@ Eigen::Matrix<double, n, 1> least_norm_solve(const Eigen::Matrix<double, n, n>& 
   for (int j = 0; j < used; ++j) {  // Cholesky of the shifted leading block, lower triangle
     double d = k(j, j) * (1.0 + 1e-10 * weight[j]);
     for (int q = 0; q < j; ++q) d -= l(j, q) * l(j, q);
-    l(j, j) = std::sqrt(d > 0.0 ? d : 1.0);
+    const double positive = static_cast<double>(d > 0.0);  // else 1: a usable factor (arithmetic, no branch)
+    l(j, j) = std::sqrt(positive * d + (1.0 - positive));
     for (int i = j + 1; i < used; ++i) {
       double e = k(i, j);
       for (int q = 0; q < j; ++q) e -= l(i, q) * l(j, q);
@@ -145,7 +146,7 @@ bool stick_trial(const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k, const C
   double mean = 1e-300;
   for (int r = 0; r < used; r += 3) mean += std::abs(least[r]) / static_cast<double>(used / 3);
   for (std::size_t l = 0; l < G; ++l) {
-    weight.template segment<3>(3 * static_cast<int>(l)).setConstant(mean / std::max(least[3 * static_cast<int>(l)], 1e-6 * mean));
+    weight.template segment<3>(3 * static_cast<int>(l)).setConstant(mean / contact_detail::at_least(least[3 * static_cast<int>(l)], 1e-6 * mean));
   }
   const Eigen::Matrix<double, n, 1> x = contact_detail::least_norm_solve<n>(k, b, weight, used);
   bool holds = true;
@@ -153,7 +154,9 @@ bool stick_trial(const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k, const C
     if (group[l] < 0) continue;
     const std::size_t i = static_cast<std::size_t>(group[l]);
     impulse[i] = x.template segment<3>(3 * static_cast<int>(l));
-    holds = holds && impulse[i][0] >= 0.0 && impulse[i].template tail<2>().norm() <= p.limit_factor[i] * impulse[i][0];
+    const bool pushes = impulse[i][0] >= 0.0;
+    const bool in_cone = impulse[i].template tail<2>().norm() <= p.limit_factor[i] * impulse[i][0];
+    holds = holds & pushes & in_cone;  // & not &&: the same work whatever the outcome
   }
   return holds;
 }
@@ -181,7 +184,7 @@ bool slide_trial(const std::array<ContactPoint, N>& data, const Eigen::Matrix<do
   for (int l = 0; l < used; ++l) {
     const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
     const Eigen::Vector2d hold = held[i].template tail<2>();
-    unit[static_cast<std::size_t>(l)] << 1.0, (p.active[i] * data[i].mu_kinetic / std::max(hold.norm(), 1e-300)) * hold;
+    unit[static_cast<std::size_t>(l)] << 1.0, (p.active[i] * data[i].mu_kinetic / contact_detail::at_least(hold.norm(), 1e-300)) * hold;
     b[l] = p.active[i] * p.to_reach[i][0];
   }
   Eigen::Matrix<double, n, n> a = Eigen::Matrix<double, n, n>::Zero();
@@ -199,7 +202,7 @@ bool slide_trial(const std::array<ContactPoint, N>& data, const Eigen::Matrix<do
     Vec3 change = Vec3::Zero();
     for (int m = 0; m < used; ++m) change += block(l, m) * (normal_load[m] * unit[static_cast<std::size_t>(m)]);
     const double slip = (change - p.to_reach[i]).template tail<2>().dot(unit[static_cast<std::size_t>(l)].template tail<2>());
-    slides = slides && impulse[i][0] >= 0.0 && slip <= 0.0;
+    slides = slides & (impulse[i][0] >= 0.0) & (slip <= 0.0);
   }
   return slides;
 }

@@ -34,7 +34,6 @@ struct ContactForces {
   std::array<double, N>& stuck;
 };
 
-
 namespace contact_detail {
 
 // Projected Gauss-Seidel over all contacts from the last step's impulses
@@ -69,12 +68,13 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const std::array<Cont
     const bool kinetic_half = sweep >= sweeps / 2;
     if (sweep == sweeps / 2) {
       for (std::size_t i = 0; i < N; ++i) {
-        if (stuck[i] > 0.0) continue;
-        limit_factor[i] = data[i].mu_kinetic;
+        const double keep = stuck[i];  // 1 stays, 0 switches (arithmetic: the same work either way)
+        limit_factor[i] = keep * limit_factor[i] + (1.0 - keep) * data[i].mu_kinetic;
         const Eigen::Vector2d hold = held[i].template tail<2>();
-        const Eigen::Vector2d start = data[i].mu_kinetic * impulse[i][0] / std::max(hold.norm(), 1e-300) * hold;
-        apply_impulse(data[i], bodies[i], problem.frame[i], Vec3(0.0, start[0] - impulse[i][1], start[1] - impulse[i][2]));
-        impulse[i].template tail<2>() = start;
+        const Eigen::Vector2d start = data[i].mu_kinetic * impulse[i][0] / at_least(hold.norm(), 1e-300) * hold;
+        const Eigen::Vector2d change = (1.0 - keep) * (start - impulse[i].template tail<2>());
+        apply_impulse(data[i], bodies[i], problem.frame[i], Vec3(0.0, change[0], change[1]));
+        impulse[i].template tail<2>() += change;
       }
     }
     for (std::size_t i = 0; i < N; ++i) {
@@ -83,17 +83,20 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const std::array<Cont
       Vec3 u = point_velocity(c, bodies[i], f);
       Vec3 p = impulse[i];
       // Normal: the approach speed to its target, pushing only.
-      p[0] = problem.active[i] * std::max(0.0, p[0] - (u[0] - problem.target[i]) / block[i](0, 0));
+      p[0] = problem.active[i] * positive_part(p[0] - (u[0] - problem.target[i]) / block[i](0, 0));
       u += block[i].col(0) * (p[0] - impulse[i][0]);
       // Tangential: the impulse that stops the slip, if the friction cone holds it.
       const Eigen::Vector2d trial = p.template tail<2>() - tangent_inverse[i] * u.template tail<2>();
       const double limit = limit_factor[i] * p[0];
-      const bool sticks = trial.norm() <= limit;
-      const Eigen::Vector2d slip = kinetic_half && u.template tail<2>().squaredNorm() > 0.0
-                                       ? Eigen::Vector2d(-u.template tail<2>())
-                                       : trial;
-      p.template tail<2>() = sticks ? trial : Eigen::Vector2d(limit / std::max(slip.norm(), 1e-300) * slip);
-      stuck[i] = sticks && p[0] > 0.0 ? 1.0 : 0.0;
+      const double sticks = static_cast<double>(trial.norm() <= limit);
+      // Both candidates computed and blended by 0/1 weights, not picked by a
+      // branch: the same instructions whatever sticks or slides.
+      const Eigen::Vector2d against_slip = -u.template tail<2>();
+      const double by_slip = static_cast<double>(kinetic_half & (against_slip.squaredNorm() > 0.0));
+      const Eigen::Vector2d slip = by_slip * against_slip + (1.0 - by_slip) * trial;
+      const Eigen::Vector2d at_limit = limit / at_least(slip.norm(), 1e-300) * slip;
+      p.template tail<2>() = sticks * trial + (1.0 - sticks) * at_limit;
+      stuck[i] = sticks * static_cast<double>(p[0] > 0.0);
       apply_impulse(c, bodies[i], f, p - impulse[i]);
       impulse[i] = p;
     }
@@ -117,7 +120,7 @@ void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<
   for (std::size_t i = 0; i < N; ++i) {
     const ContactPoint& c = data[i];
     problem.frame[i] = contact_detail::frame_of(c, bodies[i]);
-    problem.active[i] = problem.frame[i].gap <= 0.0 ? 1.0 : 0.0;
+    problem.active[i] = static_cast<double>(problem.frame[i].gap <= 0.0);
     const Vec3 u = contact_detail::point_velocity(c, bodies[i], problem.frame[i]);
     // A bounce (Newton's law, separation = e approach) at the approach speed
     // averaged over the step, less the smooth loads' half step after it: the
@@ -125,10 +128,11 @@ void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<
     // end-of-step speed averaged over it, which leaves bounce heights unbiased.
     const double average = 0.5 * (start_normal_velocity[i] + u[0]);
     const double bounce = -c.restitution * average + 0.5 * (u[0] - start_normal_velocity[i]);
-    const double target = u[0] < -bounce_speed ? std::max(bounce, 0.0) : 0.0;
+    const double target = static_cast<double>(u[0] < -bounce_speed) * contact_detail::positive_part(bounce);
     problem.target[i] = target;
     problem.to_reach[i] = Vec3(target, 0.0, 0.0) - u;
-    problem.limit_factor[i] = out.stuck[i] > 0.0 ? c.mu_static : c.mu_kinetic;
+    const double was_stuck = static_cast<double>(out.stuck[i] > 0.0);
+    problem.limit_factor[i] = was_stuck * c.mu_static + (1.0 - was_stuck) * c.mu_kinetic;
     start_v[i] = *bodies[i].v;
     start_w[i] = bodies[i].w ? *bodies[i].w : Vec3(Vec3::Zero());
   }
@@ -143,9 +147,11 @@ void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<
   std::array<Vec3, N> impulse;
   std::array<double, N> stuck;
   contact_detail::gauss_seidel(data, bodies, h, sweeps, problem, held, out, impulse, stuck);
-  // A trial's impulses instead, on the bodies it holds for.
+  // Each body's impulses: the stick trial's where it holds, else the slide
+  // trial's where that holds, else Gauss-Seidel's; its velocities from the
+  // smooth step's and them (picked by index: the same work whatever is picked).
   for (std::size_t g = 0; g < B; ++g) {
-    if (!holds[g] && !slides[g]) continue;
+    const int pick = (1 - static_cast<int>(holds[g])) * (2 - static_cast<int>(slides[g]));  // 0, 1 or 2
     for (const int member : groups[g]) {
       if (member < 0) continue;
       const std::size_t i = static_cast<std::size_t>(member);
@@ -155,8 +161,10 @@ void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<
     for (const int member : groups[g]) {
       if (member < 0) continue;
       const std::size_t i = static_cast<std::size_t>(member);
-      impulse[i] = holds[g] ? held[i] : slid[i];
-      stuck[i] = holds[g] && held[i][0] > 0.0 ? problem.active[i] : 0.0;
+      const std::array<const Vec3*, 3> options{&held[i], &slid[i], &impulse[i]};
+      const std::array<double, 3> stuck_options{static_cast<double>(held[i][0] > 0.0) * problem.active[i], 0.0, stuck[i]};
+      impulse[i] = *options[static_cast<std::size_t>(pick)];
+      stuck[i] = stuck_options[static_cast<std::size_t>(pick)];
       contact_detail::apply_impulse(data[i], bodies[i], problem.frame[i], impulse[i]);
     }
   }
@@ -191,7 +199,7 @@ void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<
   for (int pass = 0; pass < 2; ++pass) {
     for (std::size_t i = 0; i < N; ++i) {
       const contact_detail::Frame f = contact_detail::frame_of(data[i], bodies[i]);
-      const double push = std::max(0.0, -f.gap / contact_detail::delassus_block(data[i], f)(0, 0));
+      const double push = contact_detail::positive_part(-f.gap / contact_detail::delassus_block(data[i], f)(0, 0));
       contact_detail::displace(data[i], bodies[i], f, Vec3(push, 0.0, 0.0));
     }
   }
