@@ -1,0 +1,40 @@
+// Steps the contact test models (docs/contact.md) through sticking,
+// sliding, rolling, bouncing and tumbling, with callgrind collecting only
+// inside sampled step() calls, each dumped with its model's name. Run by
+// contact_instructions.sh under valgrind, which checks that every sampled
+// step of a model executes the same number of instructions.
+#include <valgrind/callgrind.h>
+
+#include "contact_balls.hpp"
+#include "contact_incline.hpp"
+#include "contact_tumble.hpp"
+
+namespace {
+
+template <class State, class Workspace, class Step>
+void sample(const char* name, State s, Step step) {
+  Workspace w;
+  for (int n = 0; n < 4000; ++n) {
+    const bool sampled = n % 40 == 0;
+    if (sampled) CALLGRIND_TOGGLE_COLLECT;
+    step(s, w);
+    if (sampled) {
+      CALLGRIND_TOGGLE_COLLECT;
+      CALLGRIND_DUMP_STATS_AT(name);
+    }
+  }
+}
+
+}  // namespace
+
+int main() {
+  namespace balls = mbrt::models::contact_balls;
+  namespace incline = mbrt::models::contact_incline;
+  namespace tumble = mbrt::models::contact_tumble;
+  sample<balls::State, balls::Workspace>("contact_balls", balls::initial_state(),
+                                         [](balls::State& s, balls::Workspace& w) { balls::step(s, w); });
+  sample<incline::State, incline::Workspace>("contact_incline", incline::initial_state(),
+                                             [](incline::State& s, incline::Workspace& w) { incline::step(s, w); });
+  sample<tumble::State, tumble::Workspace>("contact_tumble", tumble::initial_state(),
+                                           [](tumble::State& s, tumble::Workspace& w) { tumble::step(s, w); });
+}
