@@ -306,19 +306,25 @@ TEST_CASE("contact outputs: the last step's forces and stick state, with their C
   CHECK(dbc.substr(at, dbc.find('\n', at) - at).find("\"\"") != std::string::npos);
 }
 
+namespace {
+
+// Heap allocations in `steps` steps from the initial state, in one workspace.
+template <class Workspace, class State, class Step>
+long allocations_in(State s, int steps, Step step) {
+  Workspace w;
+  AllocationCounter counter;
+  for (int i = 0; i < steps; ++i) REQUIRE(step(s, w) == mbrt::StepStatus::ok);
+  return counter.count();
+}
+
+}  // namespace
+
 TEST_CASE("the contact step allocates nothing, whatever touches, sticks, slides or bounces") {
   namespace m = mbrt::models::contact_balls;
-  m::State s = m::initial_state();
-  m::Workspace w;
-  AllocationCounter counter;
-  for (int i = 0; i < 500; ++i) REQUIRE(m::step(s, w) == mbrt::StepStatus::ok);
-  CHECK(counter.count() == 0);
+  CHECK(allocations_in<m::Workspace>(m::initial_state(), 500, [](m::State& s, m::Workspace& w) { return m::step(s, w); }) == 0);
   namespace inc = mbrt::models::contact_incline;
-  inc::State si = inc::initial_state();
-  inc::Workspace wi;
-  AllocationCounter incline_counter;
-  for (int i = 0; i < 10; ++i) REQUIRE(inc::step(si, wi) == mbrt::StepStatus::ok);
-  CHECK(incline_counter.count() == 0);
+  CHECK(allocations_in<inc::Workspace>(inc::initial_state(), 10,
+                                       [](inc::State& s, inc::Workspace& w) { return inc::step(s, w); }) == 0);
 }
 
 namespace {

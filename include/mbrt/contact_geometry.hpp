@@ -67,20 +67,27 @@ inline Vec3 point_velocity(const ContactPoint& c, const ContactBody& b, const Fr
   return u;
 }
 
-// The body's velocity change from an impulse dP (normal, tangent1, tangent2) at the point.
-inline void apply_impulse(const ContactPoint& c, const ContactBody& b, const Frame& f, const Vec3& dp) noexcept {
-  *b.v += c.inverse_mass * (dp[0] * c.normal + dp[1] * c.tangent1 + dp[2] * c.tangent2);
-  if (b.w) *b.w += c.inverse_inertia * (dp[0] * f.arm[0] + dp[1] * f.arm[1] + dp[2] * f.arm[2]);
+// M^-1 J^T dP for an impulse dP (normal, tangent1, tangent2) at the point:
+// the body's translation (world) and rotation (body axes) parts. The same
+// directions serve a velocity change (an impulse) and a displacement (a
+// position impulse).
+inline Vec3 linear_response(const ContactPoint& c, const Vec3& dp) noexcept {
+  return c.inverse_mass * (dp[0] * c.normal + dp[1] * c.tangent1 + dp[2] * c.tangent2);
+}
+inline Vec3 angular_response(const ContactPoint& c, const Frame& f, const Vec3& dp) noexcept {
+  return c.inverse_inertia * (dp[0] * f.arm[0] + dp[1] * f.arm[1] + dp[2] * f.arm[2]);
 }
 
-// The body's displacement from a position impulse dP: translation and a
-// body-axes rotation, the same directions as the velocity change.
+// The body's velocity change from an impulse dP at the point.
+inline void apply_impulse(const ContactPoint& c, const ContactBody& b, const Frame& f, const Vec3& dp) noexcept {
+  *b.v += linear_response(c, dp);
+  if (b.w) *b.w += angular_response(c, f, dp);
+}
+
+// The body's displacement from a position impulse dP at the point.
 inline void displace(const ContactPoint& c, const ContactBody& b, const Frame& f, const Vec3& dp) noexcept {
-  *b.r += c.inverse_mass * (dp[0] * c.normal + dp[1] * c.tangent1 + dp[2] * c.tangent2);
-  if (b.p) {
-    const Vec3 theta = c.inverse_inertia * (dp[0] * f.arm[0] + dp[1] * f.arm[1] + dp[2] * f.arm[2]);
-    *b.p = quaternion_product(*b.p, cayley_increment(theta));
-  }
+  *b.r += linear_response(c, dp);
+  if (b.p) *b.p = quaternion_product(*b.p, cayley_increment(angular_response(c, f, dp)));
 }
 
 // The contact's 3x3 block of the Delassus matrix J M^-1 J^T.

@@ -178,11 +178,9 @@ void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<
     for (const int member : group) {
       if (member < 0) continue;
       const std::size_t i = static_cast<std::size_t>(member);
-      const ContactPoint& c = data[i];
-      const contact_detail::Frame& f = problem.frame[i];
       const Vec3 p = (0.5 * h) * impulse[i];
-      shift += c.inverse_mass * (p[0] * c.normal + p[1] * c.tangent1 + p[2] * c.tangent2);
-      turn += c.inverse_inertia * (p[0] * f.arm[0] + p[1] * f.arm[1] + p[2] * f.arm[2]);
+      shift += contact_detail::linear_response(data[i], p);
+      turn += contact_detail::angular_response(data[i], problem.frame[i], p);
     }
     const ContactBody& body = bodies[static_cast<std::size_t>(group[0])];
     *body.r += shift;
