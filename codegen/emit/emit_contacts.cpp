@@ -25,53 +25,64 @@ std::string Emitter::contact_names() const {
   return names;
 }
 
-// Gauss-Seidel sweeps per step, for bodies neither the stick nor the slide
-// trial holds (some contacts stick, others slide): half with the static
-// limits, half with the kinetic ones; two per contact of the body with the
-// most, at least four, warm-started from the last step (docs/contact.md).
-int Emitter::contact_sweeps() const {
-  std::map<int, int> per_body;
-  int most = 0;
-  for (const ContactPlan& c : a_.contacts) most = std::max(most, ++per_body[c.body]);
-  return std::max(4, 2 * most);
+// The contacts of each mechanism (a free body, or bodies joined by joints
+// or drivers), in order of their first contact.
+static std::vector<std::vector<int>> contacts_by_mechanism(const std::vector<ContactPlan>& contacts) {
+  std::map<int, size_t> slot;
+  std::vector<std::vector<int>> groups;
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    const auto [at, added] = slot.emplace(contacts[i].mechanism, groups.size());
+    if (added) groups.emplace_back();
+    groups[at->second].push_back(static_cast<int>(i));
+  }
+  return groups;
 }
 
-// Each body's contacts, padded with -1 to the most any body has: the
-// trials solve them together (include/mbrt/contact_trials.hpp).
-std::string Emitter::contact_groups() const {
-  std::map<int, std::vector<int>> by_body;
-  std::vector<int> order;  // bodies in order of their first contact
-  for (size_t i = 0; i < a_.contacts.size(); ++i) {
-    const int body = a_.contacts[i].body;
-    if (by_body.find(body) == by_body.end()) order.push_back(body);
-    by_body[body].push_back(static_cast<int>(i));
-  }
+// Gauss-Seidel sweeps per step, for mechanisms neither the stick nor the
+// slide trial holds (some contacts stick, others slide): half with the
+// static limits, half with the kinetic ones; two per contact of the
+// mechanism with the most, at least four, warm-started from the last step
+// (docs/contact.md).
+int Emitter::contact_sweeps() const {
   size_t most = 0;
-  for (const auto& entry : by_body) most = std::max(most, entry.second.size());
+  for (const auto& group : contacts_by_mechanism(a_.contacts)) most = std::max(most, group.size());
+  return std::max(4, 2 * static_cast<int>(most));
+}
+
+// Each mechanism's contacts, padded with -1 to the most any has: the trials
+// solve them together (include/mbrt/contact_trials.hpp).
+std::string Emitter::contact_groups() const {
+  const auto by_mechanism = contacts_by_mechanism(a_.contacts);
+  size_t most = 0;
+  for (const auto& group : by_mechanism) most = std::max(most, group.size());
   std::string groups;
-  for (const int body : order) {
-    std::vector<int> members = by_body[body];
+  for (std::vector<int> members : by_mechanism) {
+    const int first = a_.contacts[static_cast<size_t>(members[0])].body;
     members.resize(most, -1);
     std::string list;
     for (const int m : members) list += (list.empty() ? "" : ", ") + std::to_string(m);
-    groups += "    {{" + list + "}},  // " + m_.bodies[static_cast<size_t>(body)].name + "\n";
+    groups += "    {{" + list + "}},  // " + m_.bodies[static_cast<size_t>(first)].name +
+              (a_.contacts[static_cast<size_t>(members[0])].jointed ? "'s mechanism" : "") + "\n";
   }
-  return "static constexpr std::array<mbrt::ContactGroup<" + std::to_string(most) + ">, " + std::to_string(order.size()) +
-         "> kContactGroups{{  // each body's contacts\n" + groups + "}};\n";
+  return "static constexpr std::array<mbrt::ContactGroup<" + std::to_string(most) + ">, " + std::to_string(by_mechanism.size()) +
+         "> kContactGroups{{  // each mechanism's contacts\n" + groups + "}};\n";
 }
 
 void Emitter::contact_members(std::ostringstream& o) const {
   const double g = m_.gravity ? m_.gravity->norm() : 0.0;
+  const bool jointed = std::any_of(a_.contacts.begin(), a_.contacts.end(), [](const ContactPlan& p) { return p.jointed; });
   o << "static constexpr int kContacts = mbrt::models::" << m_.name << "::kContacts;\n"
     << "static constexpr int kContactSweeps = " << contact_sweeps() << ";  // Gauss-Seidel sweeps per step\n"
     << contact_groups()
+    << "// A contact's body is in a joint or driver: its impulses move the mechanism.\n"
+    << "static constexpr bool kJointedContacts = " << (jointed ? "true" : "false") << ";\n"
     << "// Approach speeds below 2 |g| h do not bounce: a resting body settles.\n"
     << "static constexpr double kBounceSpeed = " << num(2.0 * g * m_.solver.step) << ";\n"
-    << "// offset (body axes), radius, plane point, normal, tangents, 1/m, J^-1 (body axes), mu_s, mu_k, e\n"
+    << "// body, jointed, offset (body axes), radius, plane point, normal, tangents, 1/m, J^-1 (body axes), mu_s, mu_k, e\n"
     << "static inline const std::array<mbrt::ContactPoint, kContacts> kContactPoints{{\n";
   for (const ContactPlan& p : a_.contacts) {
     const Contact& c = m_.contacts[static_cast<size_t>(p.model_index)];
-    o << "    {" << vec3(p.offset) << ", " << num(c.radius) << ", " << vec3(c.plane_point) << ",\n     "
+    o << "    {body::" << m_.bodies[static_cast<size_t>(p.body)].name << ", " << (p.jointed ? "true" : "false") << ", " << vec3(p.offset) << ", " << num(c.radius) << ", " << vec3(c.plane_point) << ",\n     "
       << vec3(c.plane_normal) << ", " << vec3(p.tangent1) << ", " << vec3(p.tangent2) << ",\n     "
       << num(1.0 / m_.bodies[static_cast<size_t>(p.body)].mass) << ", " << mat3(p.inverse_inertia) << ",\n     "
       << num(c.mu_static) << ", " << num(c.mu_kinetic) << ", " << num(c.restitution) << "},  // " << c.name << "\n";
@@ -86,7 +97,18 @@ void Emitter::contact_members(std::ostringstream& o) const {
       o << "      {&" << st << ".r, nullptr, &" << st << ".v, nullptr},\n";
     }
   }
-  o << "  }};\n}\n";
+  o << "  }};\n}\n"
+    << "// (dq, s) => (s): positions moved by dq = [dr; body-axes rotation vector] per body.\n"
+    << "static void displace(const BodyVectors& dq, State& s) noexcept {\n";
+  for (size_t i = 0; i < m_.bodies.size(); ++i) {
+    const std::string st = state_of(static_cast<int>(i));
+    o << "  " << st << ".r += dq" << at(static_cast<int>(i)) << ".head<3>();\n";
+    if (a_.bodies[i].rigid) {
+      o << "  " << st << ".p = mbrt::quaternion_product(" << st << ".p, mbrt::cayley_increment(dq" << at(static_cast<int>(i))
+        << ".tail<3>()));\n";
+    }
+  }
+  o << "}\n";
 }
 
 }  // namespace mbrt::codegen

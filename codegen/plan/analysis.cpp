@@ -367,6 +367,24 @@ namespace {
 // act on its mass alone, after the scheme's step, which the constraint forces
 // of a joint would have to share (docs/contact.md).
 std::vector<ContactPlan> contact_plans(const Model& model, const Analysis& a) {
+  // Mechanisms: bodies joined by joints or drivers (union-find over the
+  // blocks, ground excluded); a contact's impulse moves its whole mechanism.
+  std::vector<int> root(model.bodies.size());
+  for (size_t b = 0; b < root.size(); ++b) root[b] = static_cast<int>(b);
+  const auto find = [&](int b) {
+    while (root[static_cast<size_t>(b)] != b) b = root[static_cast<size_t>(b)];
+    return b;
+  };
+  std::vector<const ConstraintBlock*> first_block(model.bodies.size(), nullptr);  // a body's first joint or driver
+  for (const ConstraintBlock& block : a.constraints) {
+    for (const int b : {block.body1, block.body2}) {
+      if (b >= 0 && !first_block[static_cast<size_t>(b)]) first_block[static_cast<size_t>(b)] = &block;
+    }
+    if (block.body1 >= 0 && block.body2 >= 0) {
+      const int r1 = find(block.body1), r2 = find(block.body2);
+      root[static_cast<size_t>(std::max(r1, r2))] = std::min(r1, r2);
+    }
+  }
   std::vector<ContactPlan> plans;
   for (size_t i = 0; i < model.contacts.size(); ++i) {
     const Contact& c = model.contacts[i];
@@ -376,19 +394,23 @@ std::vector<ContactPlan> contact_plans(const Model& model, const Analysis& a) {
                        "contacts need a scheme in absolute coordinates, e.g. staggered-pcst (the scheme is " +
                            std::string(mbrt::scheme_name(model.solver.scheme)) + ", whose bodies all hang from joints)");
     }
-    for (const ConstraintBlock& block : a.constraints) {
-      if (block.body1 == c.body || block.body2 == c.body) {
-        throw ModelError(c.where, key + ".body",
-                         "body '" + model.body_name(c.body) + "' is in " + (block.source == ConstraintSource::joint ? "joint" : "driver") +
-                             " '" + block.name + "': contacts are on free bodies, bodies in no joint or driver (docs/contact.md)");
-      }
+    const ConstraintBlock* block = first_block[static_cast<size_t>(c.body)];
+    const bool in_joint = block != nullptr;
+    // Their impulses need S = B M^-1 B^T factorized at the step's end, which
+    // staggered-nps (a tree elimination) and ali3p (a leading matrix with
+    // M) do not keep.
+    if (in_joint && (model.solver.scheme == mbrt::Scheme::staggered_nps || model.solver.scheme == mbrt::Scheme::ali3p)) {
+      throw ModelError(c.where, key + ".body",
+                       "body '" + model.body_name(c.body) + "' is in " + (block->source == ConstraintSource::joint ? "joint" : "driver") +
+                           " '" + block->name + "': contacts on bodies in joints need staggered-pcst, baumgarte, blajer or " +
+                           "rk4-projected (the scheme is " + std::string(mbrt::scheme_name(model.solver.scheme)) + "; docs/contact.md)");
     }
     const BodyPlan& body = a.bodies[static_cast<size_t>(c.body)];
     if (body.tunable_mass) {
       throw ModelError(c.where, key + ".body",
                        "body '" + model.body_name(c.body) + "' has a tunable mass or inertia: a contact's body takes the file's values");
     }
-    ContactPlan plan{static_cast<int>(i), c.body, Eigen::Vector3d::Zero(), {}, {}, Eigen::Matrix3d::Zero()};
+    ContactPlan plan{static_cast<int>(i), c.body, Eigen::Vector3d::Zero(), {}, {}, Eigen::Matrix3d::Zero(), find(c.body), in_joint};
     plan.offset = body_point(model, c.body, c.point, c.where, key + (c.type == ContactType::sphere ? ".center" : ".point"));
     complete_triad(c.plane_normal, plan.tangent1, plan.tangent2);
     if (body.rigid) plan.inverse_inertia = model.bodies[static_cast<size_t>(c.body)].inertia.inverse();

@@ -64,6 +64,8 @@ struct ContactPlan {
   Eigen::Vector3d offset;             // body axes: from the COM to the point, or to the sphere's centre
   Eigen::Vector3d tangent1, tangent2; // world: with the plane's normal a right-handed triad
   Eigen::Matrix3d inverse_inertia;    // body axes; zero for a particle
+  int mechanism;                      // the first body of its mechanism (bodies joined by joints or drivers)
+  bool jointed;                       // its body is in a joint or driver
 };
 
 // Where an input acts: a torque about axis1 (body-1 axes) on body2 with the

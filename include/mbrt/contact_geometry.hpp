@@ -14,6 +14,8 @@ namespace mbrt {
 
 // A contact's constant data (generated from the model file).
 struct ContactPoint {
+  int body;                         // its body's index in the model's body vectors
+  bool jointed;                     // its body is in a joint or driver
   Vec3 offset;                      // body axes: from the COM to the point, or to the sphere's centre
   double radius;                    // sphere; 0 for a point
   Vec3 plane_point;                 // world
@@ -76,6 +78,21 @@ inline Vec3 linear_response(const ContactPoint& c, const Vec3& dp) noexcept {
 }
 inline Vec3 angular_response(const ContactPoint& c, const Frame& f, const Vec3& dp) noexcept {
   return c.inverse_inertia * (dp[0] * f.arm[0] + dp[1] * f.arm[1] + dp[2] * f.arm[2]);
+}
+
+// The same as a body vector [v; w_body], the model's generalized velocities' form.
+inline Vec6 body_response(const ContactPoint& c, const Frame& f, const Vec3& dp) noexcept {
+  Vec6 x;
+  x << linear_response(c, dp), angular_response(c, f, dp);
+  return x;
+}
+
+// The point's velocity along (normal, tangent1, tangent2) for its body's
+// velocities u = [v; w_body].
+inline Vec3 point_velocity_of(const ContactPoint& c, const Frame& f, const Vec6& u) noexcept {
+  Vec3 r(c.normal.dot(u.head<3>()), c.tangent1.dot(u.head<3>()), c.tangent2.dot(u.head<3>()));
+  for (int k = 0; k < 3; ++k) r[k] += f.arm[k].dot(u.tail<3>());
+  return r;
 }
 
 // The body's velocity change from an impulse dP at the point.

@@ -1,10 +1,11 @@
-// The exact solves of one body's contacts (docs/contact.md): the stick
+// The exact solves of one mechanism's contacts (docs/contact.md): the stick
 // trial (every closed contact holds) and the slide trial (every closed
 // contact slides under its kinetic friction), each a fixed-size dense solve
-// on the body's block of the Delassus matrix K = J M^-1 J^T. A body takes a
-// trial's impulses where it holds for all its contacts; the Gauss-Seidel
-// sweeps of include/mbrt/contacts.hpp cover the rest (some contacts stick,
-// others slide).
+// on the mechanism's block of the Delassus matrix K = J M_c^-1 J^T (M_c^-1:
+// the bodies' response with their joints, include/mbrt/contacts.hpp). A
+// mechanism (one free body, or bodies joined by joints) takes a trial's
+// impulses where it holds for all its contacts; the Gauss-Seidel sweeps of
+// include/mbrt/contacts.hpp cover the rest (some contacts stick, others slide).
 #pragma once
 
 #include <algorithm>
@@ -17,8 +18,8 @@
 
 namespace mbrt {
 
-// One body's contacts, indices into the model's; -1 pads the list to the
-// size of the body with the most (fixed by the model).
+// One mechanism's contacts, indices into the model's; -1 pads the list to
+// the size of the mechanism with the most (fixed by the model).
 template <std::size_t G>
 using ContactGroup = std::array<int, G>;
 
@@ -31,6 +32,7 @@ template <std::size_t N>
 struct ContactProblem {
   std::array<contact_detail::Frame, N> frame;
   std::array<double, N> active;
+  std::array<Vec3, N> start_velocity;  // after the smooth step
   std::array<double, N> target;
   std::array<Vec3, N> to_reach;
   std::array<double, N> limit_factor;
@@ -46,8 +48,9 @@ int members(const ContactGroup<G>& group) noexcept {
   return m;
 }
 
-// The body's block of K, lower triangle, 3 rows per contact (normal,
-// tangent1, tangent2); an open contact's and a pad's rows are identity.
+// The mechanism's block of K as if its bodies were free (J M^-1 J^T), lower
+// triangle, 3 rows per contact (normal, tangent1, tangent2); an open
+// contact's and a pad's rows are identity.
 template <std::size_t N, std::size_t G>
 Eigen::Matrix<double, 3 * int(G), 3 * int(G)> delassus_matrix(const std::array<ContactPoint, N>& data,
                                                                const ContactProblem<N>& p,
@@ -65,7 +68,10 @@ Eigen::Matrix<double, 3 * int(G), 3 * int(G)> delassus_matrix(const std::array<C
       const int j = group[lj], rj = 3 * static_cast<int>(lj);
       if (j < 0) continue;
       const Frame& fj = p.frame[static_cast<std::size_t>(j)];
-      const double both = active * p.active[static_cast<std::size_t>(j)];
+      // Contacts on different bodies of a mechanism couple through its joints
+      // only (their part is added by the caller).
+      const double same_body = static_cast<double>(data[static_cast<std::size_t>(j)].body == c.body);
+      const double both = active * p.active[static_cast<std::size_t>(j)] * same_body;
       for (int a = 0; a < 3; ++a) {
         const Vec3 m = c.inverse_inertia * fi.arm[a];
         for (int b = 0; b < 3; ++b) k(ri + a, rj + b) += both * (fj.arm[b].dot(m) + (a == b ? c.inverse_mass : 0.0));

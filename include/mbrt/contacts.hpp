@@ -1,11 +1,12 @@
-// Unilateral frictional contacts of free bodies with fixed planes
+// Unilateral frictional contacts of bodies with fixed planes
 // (docs/contact.md). After the scheme's smooth step, velocity-level impulses
 // (Moreau 1988, "Unilateral contact and dry friction in finite freedom
 // dynamics"; Stewart 2000, "Rigid-body dynamics with friction and impact",
 // SIAM Review 42(1)) make every touching contact push, never pull, and
 // either stick or slide under Coulomb friction: a contact stuck at the last
 // step holds up to mu_static times its normal impulse, a sliding one feels
-// mu_kinetic. Per body, the stick trial, else the slide trial
+// mu_kinetic. Per mechanism (a free body, or bodies joined by joints, whose
+// joints take their share of each impulse), the stick trial, else the slide trial
 // (include/mbrt/contact_trials.hpp), else projected Gauss-Seidel with a
 // fixed number of sweeps; positions take the impulses as a force constant
 // over the step (h/2 of the velocity change), then penetration an impact
@@ -36,58 +37,70 @@ struct ContactForces {
 
 namespace contact_detail {
 
-// Projected Gauss-Seidel over all contacts from the last step's impulses
-// (where the contact stays closed), for the bodies neither trial holds for:
-// the first half of the sweeps with the static limit where the contact
-// stuck at the last step, then those it cannot hold slide under the kinetic
-// one (broken loose within the step), starting at the kinetic limit along
-// the stick trial's friction (the way the loads drive them; the static
-// half's friction carries directions from stopping the body sweep by sweep).
-// Each contact's normal impulse and its stick impulse on its own 3x3 block
-// of K; a sliding contact's friction against its slip velocity, which the
-// sweeps bring to the end-of-step slip (maximum dissipation).
-template <std::size_t N>
-void gauss_seidel(const std::array<ContactPoint, N>& data, const std::array<ContactBody, N>& bodies, double h,
-                  int sweeps, const ContactProblem<N>& problem, const std::array<Vec3, N>& held,
-                  const ContactForces<N>& last, std::array<Vec3, N>& impulse, std::array<double, N>& stuck) noexcept {
-  std::array<Mat3, N> block;
-  std::array<Eigen::Matrix2d, N> tangent_inverse;
-  std::array<double, N> limit_factor = problem.limit_factor;
-  for (std::size_t i = 0; i < N; ++i) {
-    const ContactPoint& c = data[i];
-    block[i] = delassus_block(c, problem.frame[i]);
-    const Mat3& d = block[i];
+// K's 3x3 block (r, c) of a mechanism, from its lower triangle.
+template <int n>
+Mat3 block_of(const Eigen::Matrix<double, n, n>& k, int r, int c) noexcept {
+  return r >= c ? Mat3(k.template block<3, 3>(3 * r, 3 * c)) : Mat3(k.template block<3, 3>(3 * c, 3 * r).transpose());
+}
+
+// Projected Gauss-Seidel over one mechanism's contacts, in contact
+// velocities u = u0 + K P, from the last step's impulses (where the contact
+// stays closed), for the mechanisms neither trial holds for: the first half
+// of the sweeps with the static limit where the contact stuck at the last
+// step, then those it cannot hold slide under the kinetic one (broken loose
+// within the step), starting at the kinetic limit along the stick trial's
+// friction (the way the loads drive them; the static half's friction
+// carries directions from stopping the body sweep by sweep). Each contact's
+// normal impulse and its stick impulse on its own 3x3 block of K; a sliding
+// contact's friction against its slip velocity, which the sweeps bring to
+// the end-of-step slip (maximum dissipation).
+template <std::size_t N, std::size_t G>
+void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k,
+                  const ContactGroup<G>& group, double h, int sweeps, const ContactProblem<N>& problem,
+                  const std::array<Vec3, N>& held, const ContactForces<N>& last, std::array<Vec3, N>& impulse,
+                  std::array<double, N>& stuck) noexcept {
+  const int used = members(group);
+  std::array<Eigen::Matrix2d, G> tangent_inverse;
+  std::array<double, G> limit_factor{};
+  for (int l = 0; l < used; ++l) {
+    const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
+    const Mat3 d = block_of(k, l, l);
     const double det = d(1, 1) * d(2, 2) - d(1, 2) * d(2, 1);
-    tangent_inverse[i] << d(2, 2) / det, -d(1, 2) / det, -d(2, 1) / det, d(1, 1) / det;
+    tangent_inverse[static_cast<std::size_t>(l)] << d(2, 2) / det, -d(1, 2) / det, -d(2, 1) / det, d(1, 1) / det;
+    limit_factor[static_cast<std::size_t>(l)] = problem.limit_factor[i];
     impulse[i] = problem.active[i] * h *
-                 Vec3(last.normal[i], c.tangent1.dot(last.tangential[i]), c.tangent2.dot(last.tangential[i]));
-    apply_impulse(c, bodies[i], problem.frame[i], impulse[i]);
+                 Vec3(last.normal[i], data[i].tangent1.dot(last.tangential[i]), data[i].tangent2.dot(last.tangential[i]));
     stuck[i] = 0.0;
   }
+  const auto velocity = [&](int l) {  // contact l's velocity at the current impulses
+    Vec3 u = problem.start_velocity[static_cast<std::size_t>(group[static_cast<std::size_t>(l)])];
+    for (int m = 0; m < used; ++m) u += block_of(k, l, m) * impulse[static_cast<std::size_t>(group[static_cast<std::size_t>(m)])];
+    return u;
+  };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     const bool kinetic_half = sweep >= sweeps / 2;
     if (sweep == sweeps / 2) {
-      for (std::size_t i = 0; i < N; ++i) {
+      for (int l = 0; l < used; ++l) {
+        const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
         const double keep = stuck[i];  // 1 stays, 0 switches (arithmetic: the same work either way)
-        limit_factor[i] = keep * limit_factor[i] + (1.0 - keep) * data[i].mu_kinetic;
+        double& factor = limit_factor[static_cast<std::size_t>(l)];
+        factor = keep * factor + (1.0 - keep) * data[i].mu_kinetic;
         const Eigen::Vector2d hold = held[i].template tail<2>();
         const Eigen::Vector2d start = data[i].mu_kinetic * impulse[i][0] / at_least(hold.norm(), 1e-300) * hold;
-        const Eigen::Vector2d change = (1.0 - keep) * (start - impulse[i].template tail<2>());
-        apply_impulse(data[i], bodies[i], problem.frame[i], Vec3(0.0, change[0], change[1]));
-        impulse[i].template tail<2>() += change;
+        impulse[i].template tail<2>() += (1.0 - keep) * (start - impulse[i].template tail<2>());
       }
     }
-    for (std::size_t i = 0; i < N; ++i) {
-      const ContactPoint& c = data[i];
-      const Frame& f = problem.frame[i];
-      Vec3 u = point_velocity(c, bodies[i], f);
+    for (int l = 0; l < used; ++l) {
+      const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
+      const Mat3 block = block_of(k, l, l);
+      Vec3 u = velocity(l);
       Vec3 p = impulse[i];
       // Normal: the approach speed to its target, pushing only.
-      p[0] = problem.active[i] * positive_part(p[0] - (u[0] - problem.target[i]) / block[i](0, 0));
-      u += block[i].col(0) * (p[0] - impulse[i][0]);
+      p[0] = problem.active[i] * positive_part(p[0] - (u[0] - problem.target[i]) / block(0, 0));
+      u += block.col(0) * (p[0] - impulse[i][0]);
       // Tangential: the impulse that stops the slip, if the friction cone holds it.
-      const Eigen::Vector2d trial = p.template tail<2>() - tangent_inverse[i] * u.template tail<2>();
-      const double limit = limit_factor[i] * p[0];
+      const Eigen::Vector2d trial = p.template tail<2>() - tangent_inverse[static_cast<std::size_t>(l)] * u.template tail<2>();
+      const double limit = limit_factor[static_cast<std::size_t>(l)] * p[0];
       const double sticks = static_cast<double>(trial.norm() <= limit);
       // Both candidates computed and blended by 0/1 weights, not picked by a
       // branch: the same instructions whatever sticks or slides.
@@ -97,8 +110,68 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const std::array<Cont
       const Eigen::Vector2d at_limit = limit / at_least(slip.norm(), 1e-300) * slip;
       p.template tail<2>() = sticks * trial + (1.0 - sticks) * at_limit;
       stuck[i] = sticks * static_cast<double>(p[0] > 0.0);
-      apply_impulse(c, bodies[i], f, p - impulse[i]);
       impulse[i] = p;
+    }
+  }
+}
+
+// A generated model's view of its joints for contacts on jointed bodies: an
+// impulse's response with the joints is the free response x = M^-1 J^T P
+// less M^-1 B^T z, z = S^-1 B x (S = B M^-1 B^T factorized by the scheme at
+// the step's end), so that the joints move with it (B dv = 0). The scheme's
+// factor is of S + eps I (its penalty or regularization, about 1e-6): two
+// refinements z += (S + eps I)^-1 (B x - S z) make the joints rigid to
+// round-off, each gaining a factor eps / (S's smallest eigenvalue). Left
+// compliant by eps, joints would let a statically indeterminate mechanism
+// (a box of two welded halves on four corners) carry internal friction
+// forces, and it would slide where it sticks.
+template <class M>
+struct Joints {
+  static constexpr int kRefinements = 2;
+  const typename M::ConstraintSystem* c;  // null where no contact's body is in a joint
+  // (x) => (x with the joints' share; z, the joints' impulses).
+  typename M::Rows constrain(typename M::BodyVectors& x) const noexcept {
+    const typename M::Rows bx = M::jacobian_times(*c, x);
+    typename M::Rows z = bx;
+    M::solve(*c, z);
+    for (int i = 0; i < kRefinements; ++i) {
+      typename M::BodyVectors d;
+      for (Vec6& e : d) e.setZero();
+      M::subtract_constraint_forces(*c, z, 1.0, d);  // d = -M^-1 B^T z
+      typename M::Rows r = bx + M::jacobian_times(*c, d);  // B x - S z
+      M::solve(*c, r);
+      z += r;
+    }
+    M::subtract_constraint_forces(*c, z, 1.0, x);
+    return z;
+  }
+};
+
+// K of a mechanism with joints: the free part (delassus_matrix) plus, per
+// column (a contact's unit impulse), what the joints take back: the
+// constrained response's point velocities at the mechanism's contacts.
+// compliance: each contact's normal row of K with the joints, closed or not
+// (the penetration projection's).
+template <class M, std::size_t N, std::size_t G>
+void add_joints(const std::array<ContactPoint, N>& data, const ContactProblem<N>& p, const ContactGroup<G>& group,
+                const Joints<M>& joints, Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k,
+                std::array<double, N>& compliance) noexcept {
+  const int used = members(group);
+  for (int lj = 0; lj < used; ++lj) {
+    const std::size_t j = static_cast<std::size_t>(group[static_cast<std::size_t>(lj)]);
+    for (int b = 0; b < 3; ++b) {
+      typename M::BodyVectors x;
+      for (Vec6& e : x) e.setZero();
+      const Vec6 free = body_response(data[j], p.frame[j], Vec3::Unit(b));
+      x[static_cast<std::size_t>(data[j].body)] = free;
+      joints.constrain(x);
+      x[static_cast<std::size_t>(data[j].body)] -= free;  // the joints' share alone
+      for (int li = lj; li < used; ++li) {
+        const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(li)]);
+        const Vec3 u = point_velocity_of(data[i], p.frame[i], x[static_cast<std::size_t>(data[i].body)]);
+        k.template block<3, 1>(3 * li, 3 * lj + b) += (p.active[i] * p.active[j]) * u;
+        if (li == lj && b == 0) compliance[j] = delassus_block(data[j], p.frame[j])(0, 0) + u[0];
+      }
     }
   }
 }
@@ -107,100 +180,110 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const std::array<Cont
 
 // (positions and velocities after the smooth step; out: the last step's
 // forces and stick states; each contact point's normal velocity at the
-// step's start) => (positions, velocities, out). groups: each body's
-// contacts; h: the step; sweeps: Gauss-Seidel sweeps (fixed at generation);
-// bounce_speed: the approach speed below which a contact does not bounce
-// (so a body at rest settles instead of chattering).
-template <std::size_t N, std::size_t G, std::size_t B>
-void resolve_contacts(const std::array<ContactPoint, N>& data, const std::array<ContactBody, N>& bodies,
-                      const std::array<ContactGroup<G>, B>& groups, double h, int sweeps, double bounce_speed,
-                      const std::array<double, N>& start_normal_velocity, ContactForces<N> out) noexcept {
+// step's start) => (positions, velocities, out; returns the joints' share
+// of the impulses as forces, z / h, zero without jointed contacts). Per
+// mechanism (M::kContactGroups): the stick trial, else the slide trial,
+// else Gauss-Seidel with M::kContactSweeps sweeps; then every body's
+// velocity change at once, its joints' share included, and h/2 of it on the
+// positions. M::kBounceSpeed: the approach speed below which a contact does
+// not bounce (so a body at rest settles instead of chattering).
+template <class M>
+typename M::Rows resolve_contacts(typename M::State& s, const contact_detail::Joints<M>& joints,
+                                  const std::array<double, M::kContacts>& start_normal_velocity) noexcept {
+  constexpr std::size_t N = static_cast<std::size_t>(M::kContacts);
+  constexpr double h = M::kStep;
+  const std::array<ContactPoint, N>& data = M::kContactPoints;
+  const std::array<ContactBody, N> bodies = M::contact_bodies(s);
+  const ContactForces<N> out{s.contact_normal, s.contact_tangential, s.contact_stuck};
   ContactProblem<N> problem;
-  std::array<Vec3, N> start_v, start_w;  // the bodies' velocities after the smooth step
   for (std::size_t i = 0; i < N; ++i) {
     const ContactPoint& c = data[i];
     problem.frame[i] = contact_detail::frame_of(c, bodies[i]);
     problem.active[i] = static_cast<double>(problem.frame[i].gap <= 0.0);
     const Vec3 u = contact_detail::point_velocity(c, bodies[i], problem.frame[i]);
+    problem.start_velocity[i] = u;
     // A bounce (Newton's law, separation = e approach) at the approach speed
     // averaged over the step, less the smooth loads' half step after it: the
     // impact's instant within the step is unknown, and this is the
     // end-of-step speed averaged over it, which leaves bounce heights unbiased.
     const double average = 0.5 * (start_normal_velocity[i] + u[0]);
     const double bounce = -c.restitution * average + 0.5 * (u[0] - start_normal_velocity[i]);
-    const double target = static_cast<double>(u[0] < -bounce_speed) * contact_detail::positive_part(bounce);
+    const double target = static_cast<double>(u[0] < -M::kBounceSpeed) * contact_detail::positive_part(bounce);
     problem.target[i] = target;
     problem.to_reach[i] = Vec3(target, 0.0, 0.0) - u;
     const double was_stuck = static_cast<double>(out.stuck[i] > 0.0);
     problem.limit_factor[i] = was_stuck * c.mu_static + (1.0 - was_stuck) * c.mu_kinetic;
-    start_v[i] = *bodies[i].v;
-    start_w[i] = bodies[i].w ? *bodies[i].w : Vec3(Vec3::Zero());
   }
-  // The trials, body by body.
-  std::array<Vec3, N> held, slid;
-  std::array<bool, B> holds, slides;
-  for (std::size_t g = 0; g < B; ++g) {
-    const auto k = contact_detail::delassus_matrix(data, problem, groups[g]);
-    holds[g] = stick_trial(k, problem, groups[g], held);
-    slides[g] = slide_trial(data, k, problem, groups[g], held, slid);
-  }
-  std::array<Vec3, N> impulse;
-  std::array<double, N> stuck;
-  contact_detail::gauss_seidel(data, bodies, h, sweeps, problem, held, out, impulse, stuck);
-  // Each body's impulses: the stick trial's where it holds, else the slide
-  // trial's where that holds, else Gauss-Seidel's; its velocities from the
-  // smooth step's and them (picked by index: the same work whatever is picked).
-  for (std::size_t g = 0; g < B; ++g) {
-    const int pick = (1 - static_cast<int>(holds[g])) * (2 - static_cast<int>(slides[g]));  // 0, 1 or 2
-    for (const int member : groups[g]) {
-      if (member < 0) continue;
-      const std::size_t i = static_cast<std::size_t>(member);
-      *bodies[i].v = start_v[i];
-      if (bodies[i].w) *bodies[i].w = start_w[i];
+  // Per mechanism: K, the trials, Gauss-Seidel; its impulses the stick
+  // trial's where it holds, else the slide trial's where that holds, else
+  // Gauss-Seidel's (picked by index: the same work whatever is picked).
+  std::array<Vec3, N> impulse, held, slid, swept;
+  std::array<double, N> stuck, compliance{};
+  for (const auto& group : M::kContactGroups) {
+    auto k = contact_detail::delassus_matrix(data, problem, group);
+    if constexpr (M::kJointedContacts) {
+      if (data[static_cast<std::size_t>(group[0])].jointed) contact_detail::add_joints(data, problem, group, joints, k, compliance);
     }
-    for (const int member : groups[g]) {
-      if (member < 0) continue;
-      const std::size_t i = static_cast<std::size_t>(member);
-      const std::array<const Vec3*, 3> options{&held[i], &slid[i], &impulse[i]};
+    const bool holds = stick_trial(k, problem, group, held);
+    const bool slides = slide_trial(data, k, problem, group, held, slid);
+    contact_detail::gauss_seidel(data, k, group, h, M::kContactSweeps, problem, held, out, swept, stuck);
+    const int pick = (1 - static_cast<int>(holds)) * (2 - static_cast<int>(slides));  // 0, 1 or 2
+    for (int l = 0; l < contact_detail::members(group); ++l) {
+      const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
+      const std::array<const Vec3*, 3> options{&held[i], &slid[i], &swept[i]};
       const std::array<double, 3> stuck_options{static_cast<double>(held[i][0] > 0.0) * problem.active[i], 0.0, stuck[i]};
       impulse[i] = *options[static_cast<std::size_t>(pick)];
       stuck[i] = stuck_options[static_cast<std::size_t>(pick)];
-      contact_detail::apply_impulse(data[i], bodies[i], problem.frame[i], impulse[i]);
     }
   }
 
-  // Positions: the impulses as a force constant over the step, h/2 of the
-  // velocity change, summed per body and turned once (rotations from
-  // several contacts applied one after another would not commute, and a
-  // body held still would creep).
-  for (const ContactGroup<G>& group : groups) {
-    Vec3 shift = Vec3::Zero(), turn = Vec3::Zero();
-    for (const int member : group) {
-      if (member < 0) continue;
-      const std::size_t i = static_cast<std::size_t>(member);
-      const Vec3 p = (0.5 * h) * impulse[i];
-      shift += contact_detail::linear_response(data[i], p);
-      turn += contact_detail::angular_response(data[i], problem.frame[i], p);
-    }
-    const ContactBody& body = bodies[static_cast<std::size_t>(group[0])];
-    *body.r += shift;
-    if (body.p) *body.p = quaternion_product(*body.p, cayley_increment(turn));
+  // Every body's velocity change at once, with its joints' share; positions
+  // take the impulses as a force constant over the step, h/2 of the velocity
+  // change (a body's rotations from several contacts summed and turned once:
+  // turned one after another they would not commute, and a body held still
+  // would creep).
+  typename M::BodyVectors change;
+  for (Vec6& e : change) e.setZero();
+  for (std::size_t i = 0; i < N; ++i) {
+    change[static_cast<std::size_t>(data[i].body)] += contact_detail::body_response(data[i], problem.frame[i], impulse[i]);
   }
+  typename M::Rows joint_forces = M::Rows::Zero();
+  if constexpr (M::kJointedContacts) joint_forces = joints.constrain(change) / h;
+  typename M::BodyVectors u = M::generalized_velocities(s);
+  for (std::size_t b = 0; b < u.size(); ++b) {
+    u[b] += change[b];
+    change[b] *= 0.5 * h;
+  }
+  M::set_velocities(u, s);
+  M::displace(change, s);
   for (std::size_t i = 0; i < N; ++i) {
     out.normal[i] = impulse[i][0] / h;
     out.tangential[i] = (impulse[i][1] * data[i].tangent1 + impulse[i][2] * data[i].tangent2) / h;
     out.stuck[i] = stuck[i];
   }
   // Penetration an impact left: projected out along the normals, pushing
-  // only, in two passes (a body is rarely left inside the plane at more
-  // than two contacts at once; a resting one is not left inside at all).
+  // only, contact by contact in two passes (a body is rarely left inside the
+  // plane at more than two contacts at once; a resting one is not left
+  // inside at all); a jointed body's mechanism moves with it.
   for (int pass = 0; pass < 2; ++pass) {
     for (std::size_t i = 0; i < N; ++i) {
       const contact_detail::Frame f = contact_detail::frame_of(data[i], bodies[i]);
-      const double push = contact_detail::positive_part(-f.gap / contact_detail::delassus_block(data[i], f)(0, 0));
-      contact_detail::displace(data[i], bodies[i], f, Vec3(push, 0.0, 0.0));
+      if constexpr (M::kJointedContacts) {
+        if (data[i].jointed) {  // constant per contact: the same work every step
+          const Vec3 push(contact_detail::positive_part(-f.gap / compliance[i]), 0.0, 0.0);
+          typename M::BodyVectors shift;
+          for (Vec6& e : shift) e.setZero();
+          shift[static_cast<std::size_t>(data[i].body)] = contact_detail::body_response(data[i], f, push);
+          joints.constrain(shift);
+          M::displace(shift, s);
+          continue;
+        }
+      }
+      const Vec3 push(contact_detail::positive_part(-f.gap / contact_detail::delassus_block(data[i], f)(0, 0)), 0.0, 0.0);
+      contact_detail::displace(data[i], bodies[i], f, push);
     }
   }
+  return joint_forces;
 }
 
 // Whether a generated model has contacts (it then defines M::kContacts).
@@ -209,11 +292,22 @@ struct has_contacts : std::false_type {};
 template <class M>
 struct has_contacts<M, std::void_t<decltype(M::kContacts)>> : std::true_type {};
 
-// A generated model's contacts after its smooth step from `start` (read
-// only) to s: its data, its bodies' state and the State's contact fields;
-// nothing for a model without contacts.
+// Whether a contact's body is in a joint or driver (its impulses then need
+// the scheme's factor of S).
 template <class M>
-void contact_step(typename M::State& start, typename M::State& s) noexcept {
+constexpr bool jointed_contacts() noexcept {
+  if constexpr (has_contacts<M>::value) return M::kJointedContacts;
+  else return false;
+}
+
+// A generated model's contacts after its smooth step from `start` (read
+// only) to s; c: the scheme's constraint system at s, factorized (needed
+// where a contact's body is in a joint, M::kJointedContacts; then returns
+// the joints' share of the impulses as forces). Nothing for a model without
+// contacts.
+template <class M>
+typename M::Rows contact_step(typename M::State& start, typename M::State& s,
+                              const typename M::ConstraintSystem* c = nullptr) noexcept {
   if constexpr (has_contacts<M>::value) {
     constexpr std::size_t n = static_cast<std::size_t>(M::kContacts);
     const std::array<ContactBody, n> before = M::contact_bodies(start);
@@ -222,8 +316,10 @@ void contact_step(typename M::State& start, typename M::State& s) noexcept {
       const contact_detail::Frame f = contact_detail::frame_of(M::kContactPoints[i], before[i]);
       start_normal_velocity[i] = contact_detail::point_velocity(M::kContactPoints[i], before[i], f)[0];
     }
-    resolve_contacts(M::kContactPoints, M::contact_bodies(s), M::kContactGroups, M::kStep, M::kContactSweeps,
-                     M::kBounceSpeed, start_normal_velocity, {s.contact_normal, s.contact_tangential, s.contact_stuck});
+    return resolve_contacts<M>(s, contact_detail::Joints<M>{c}, start_normal_velocity);
+  } else {
+    (void)start, (void)s, (void)c;
+    return typename M::Rows();
   }
 }
 

@@ -130,7 +130,12 @@ StepStatus rk4_projected_step(typename M::State& s, typename M::Workspace& w) no
   M::applied_loads(w.k, s, w.l);
   M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);
 
-  contact_step<M>(w.last_good, s);  // unilateral contacts and their friction, docs/contact.md
+  // Unilateral contacts and their friction (docs/contact.md).
+  if constexpr (jointed_contacts<M>()) {
+    positive = contact_step_with_joints<M>(s, w) && positive;
+  } else {
+    contact_step<M>(w.last_good, s);
+  }
   if (!finite(s)) {
     s = w.last_good;
     return StepStatus::non_finite;

@@ -133,6 +133,46 @@ void correct_velocities(const typename M::ConstraintSystem& c, typename M::State
   M::set_velocities(u, s);
 }
 
+// The contact step where a contact's body is in a joint (docs/contact.md):
+// S factorized at the step's end gives the joints' share of each impulse.
+// The impulses' displacement (h/2 of the velocity change) is tangent to
+// the joints, off them at second order (a rebounding rod turned about its
+// pin by h/2 dw moves its centre along the tangent): one mass-orthogonal
+// Newton step puts the positions back on the joints and the velocities are
+// projected onto them (Blajer 1997, eqs. 38 and 40), else the next step's
+// stabilization would pay for the gap in energy. Then the accelerations and
+// multipliers at the velocities the contacts left, which the next step
+// starts from (the rod's centripetal load after it rebounds), with the
+// joints' share of the contact forces added to the multipliers. Returns
+// whether S was positive definite.
+template <class M>
+bool contact_step_with_joints(typename M::State& s, typename M::Workspace& w) noexcept {
+  using BodyVectors = typename M::BodyVectors;
+  M::kinematics(s, w.k);
+  M::constraint_rows(w.k, s, w.c);
+  bool positive = factorize_system<M>(s, w.c);
+  const typename M::Rows joint_forces = contact_step<M>(w.last_good, s, &w.c);
+  M::kinematics(s, w.k);
+  M::constraint_rows(w.k, s, w.c);
+  positive = factorize_system<M>(s, w.c) && positive;
+  typename M::Rows z = M::stacked_phi(w.c);
+  M::solve(w.c, z);
+  BodyVectors dq;
+  for (auto& d : dq) d.setZero();
+  M::subtract_constraint_forces(w.c, z, 1.0, dq);
+  M::displace(dq, s);
+  correct_velocities<M>(w.c, s);
+  // The rows at the corrected positions (the factor and directions stay,
+  // off by the correction), the velocity terms at the new velocities.
+  M::kinematics(s, w.k);
+  w.k.vel = M::velocities_of(s);
+  M::constraint_rows(w.k, s, w.c);
+  M::applied_loads(w.k, s, w.l);
+  M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);
+  s.lambda += joint_forces;
+  return positive;
+}
+
 // staggered-nps factorizes the tree and the cut rows where the others factorize S;
 // its tree elimination takes the state where masses are runtime parameters.
 template <class M>
@@ -248,7 +288,12 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     }
   }
 
-  contact_step<M>(w.last_good, s);  // unilateral contacts and their friction, docs/contact.md
+  // Unilateral contacts and their friction (docs/contact.md).
+  if constexpr (jointed_contacts<M>()) {
+    positive = contact_step_with_joints<M>(s, w) && positive;
+  } else {
+    contact_step<M>(w.last_good, s);
+  }
   if (!finite(s)) {
     s = w.last_good;
     return StepStatus::non_finite;
