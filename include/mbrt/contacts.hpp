@@ -37,46 +37,38 @@ struct ContactForces {
 
 namespace contact_detail {
 
-// K's 3x3 block (r, c) of a mechanism, from its lower triangle.
-template <int n>
-Mat3 block_of(const Eigen::Matrix<double, n, n>& k, int r, int c) noexcept {
-  return r >= c ? Mat3(k.template block<3, 3>(3 * r, 3 * c)) : Mat3(k.template block<3, 3>(3 * c, 3 * r).transpose());
-}
-
 // Projected Gauss-Seidel over one mechanism's contacts, in contact
-// velocities u = u0 + K P, from the last step's impulses (where the contact
-// stays closed), for the mechanisms neither trial holds for: the first half
-// of the sweeps with the static limit where the contact stuck at the last
-// step, then those it cannot hold slide under the kinetic one (broken loose
-// within the step), starting at the kinetic limit along the stick trial's
-// friction (the way the loads drive them; the static half's friction
-// carries directions from stopping the body sweep by sweep). Each contact's
-// normal impulse and its stick impulse on its own 3x3 block of K; a sliding
-// contact's friction against its slip velocity, which the sweeps bring to
-// the end-of-step slip (maximum dissipation).
+// velocities u = u0 + K P (K full: both triangles), from the last step's
+// impulses (where the contact stays closed), for the mechanisms neither
+// trial holds for: the first half of the sweeps with the static limit where
+// the contact stuck at the last step, then those it cannot hold slide under
+// the kinetic one (broken loose within the step), starting at the kinetic
+// limit along the stick trial's friction (the way the loads drive them; the
+// static half's friction carries directions from stopping the body sweep by
+// sweep). Each contact's normal impulse and its stick impulse on its own 3x3
+// block of K; a sliding contact's friction against its slip velocity, which
+// the sweeps bring to the end-of-step slip (maximum dissipation).
 template <std::size_t N, std::size_t G>
 void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k,
                   const ContactGroup<G>& group, double h, int sweeps, const ContactProblem<N>& problem,
                   const std::array<Vec3, N>& held, const ContactForces<N>& last, std::array<Vec3, N>& impulse,
                   std::array<double, N>& stuck) noexcept {
+  constexpr int n = 3 * static_cast<int>(G);
   const int used = members(group);
   std::array<Eigen::Matrix2d, G> tangent_inverse;
   std::array<double, G> limit_factor{};
+  Eigen::Matrix<double, n, 1> p = Eigen::Matrix<double, n, 1>::Zero(), u0 = Eigen::Matrix<double, n, 1>::Zero();
   for (int l = 0; l < used; ++l) {
     const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
-    const Mat3 d = block_of(k, l, l);
+    const Mat3 d = k.template block<3, 3>(3 * l, 3 * l);
     const double det = d(1, 1) * d(2, 2) - d(1, 2) * d(2, 1);
     tangent_inverse[static_cast<std::size_t>(l)] << d(2, 2) / det, -d(1, 2) / det, -d(2, 1) / det, d(1, 1) / det;
     limit_factor[static_cast<std::size_t>(l)] = problem.limit_factor[i];
-    impulse[i] = problem.active[i] * h *
-                 Vec3(last.normal[i], data[i].tangent1.dot(last.tangential[i]), data[i].tangent2.dot(last.tangential[i]));
+    p.template segment<3>(3 * l) = problem.active[i] * h *
+                                   Vec3(last.normal[i], data[i].tangent1.dot(last.tangential[i]), data[i].tangent2.dot(last.tangential[i]));
+    u0.template segment<3>(3 * l) = problem.start_velocity[i];
     stuck[i] = 0.0;
   }
-  const auto velocity = [&](int l) {  // contact l's velocity at the current impulses
-    Vec3 u = problem.start_velocity[static_cast<std::size_t>(group[static_cast<std::size_t>(l)])];
-    for (int m = 0; m < used; ++m) u += block_of(k, l, m) * impulse[static_cast<std::size_t>(group[static_cast<std::size_t>(m)])];
-    return u;
-  };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     const bool kinetic_half = sweep >= sweeps / 2;
     if (sweep == sweeps / 2) {
@@ -86,21 +78,22 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<d
         double& factor = limit_factor[static_cast<std::size_t>(l)];
         factor = keep * factor + (1.0 - keep) * data[i].mu_kinetic;
         const Eigen::Vector2d hold = held[i].template tail<2>();
-        const Eigen::Vector2d start = data[i].mu_kinetic * impulse[i][0] / at_least(hold.norm(), 1e-300) * hold;
-        impulse[i].template tail<2>() += (1.0 - keep) * (start - impulse[i].template tail<2>());
+        const Eigen::Vector2d start = data[i].mu_kinetic * p[3 * l] / at_least(hold.norm(), 1e-300) * hold;
+        p.template segment<2>(3 * l + 1) += (1.0 - keep) * (start - p.template segment<2>(3 * l + 1));
       }
     }
     for (int l = 0; l < used; ++l) {
       const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
-      const Mat3 block = block_of(k, l, l);
-      Vec3 u = velocity(l);
-      Vec3 p = impulse[i];
+      const auto block = k.template block<3, 3>(3 * l, 3 * l);
+      const Vec3 old = p.template segment<3>(3 * l);
+      Vec3 u = u0.template segment<3>(3 * l) + k.template middleRows<3>(3 * l) * p;  // its velocity now
+      Vec3 q = old;
       // Normal: the approach speed to its target, pushing only.
-      p[0] = problem.active[i] * positive_part(p[0] - (u[0] - problem.target[i]) / block(0, 0));
-      u += block.col(0) * (p[0] - impulse[i][0]);
+      q[0] = problem.active[i] * positive_part(q[0] - (u[0] - problem.target[i]) / block(0, 0));
+      u += block.col(0) * (q[0] - old[0]);
       // Tangential: the impulse that stops the slip, if the friction cone holds it.
-      const Eigen::Vector2d trial = p.template tail<2>() - tangent_inverse[static_cast<std::size_t>(l)] * u.template tail<2>();
-      const double limit = limit_factor[static_cast<std::size_t>(l)] * p[0];
+      const Eigen::Vector2d trial = q.template tail<2>() - tangent_inverse[static_cast<std::size_t>(l)] * u.template tail<2>();
+      const double limit = limit_factor[static_cast<std::size_t>(l)] * q[0];
       const double sticks = static_cast<double>(trial.norm() <= limit);
       // Both candidates computed and blended by 0/1 weights, not picked by a
       // branch: the same instructions whatever sticks or slides.
@@ -108,11 +101,12 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<d
       const double by_slip = static_cast<double>(kinetic_half & (against_slip.squaredNorm() > 0.0));
       const Eigen::Vector2d slip = by_slip * against_slip + (1.0 - by_slip) * trial;
       const Eigen::Vector2d at_limit = limit / at_least(slip.norm(), 1e-300) * slip;
-      p.template tail<2>() = sticks * trial + (1.0 - sticks) * at_limit;
-      stuck[i] = sticks * static_cast<double>(p[0] > 0.0);
-      impulse[i] = p;
+      q.template tail<2>() = sticks * trial + (1.0 - sticks) * at_limit;
+      stuck[i] = sticks * static_cast<double>(q[0] > 0.0);
+      p.template segment<3>(3 * l) = q;
     }
   }
+  for (int l = 0; l < used; ++l) impulse[static_cast<std::size_t>(group[static_cast<std::size_t>(l)])] = p.template segment<3>(3 * l);
 }
 
 // A generated model's view of its joints for contacts on jointed bodies: an
@@ -223,6 +217,9 @@ typename M::Rows resolve_contacts(typename M::State& s, const contact_detail::Jo
     auto k = contact_detail::delassus_matrix(data, problem, group);
     if constexpr (M::kJointedContacts) {
       if (data[static_cast<std::size_t>(group[0])].jointed) contact_detail::add_joints(data, problem, group, joints, k, compliance);
+    }
+    for (int r = 0; r < k.rows(); ++r) {  // both triangles, for Gauss-Seidel's rows
+      for (int c = r + 1; c < k.cols(); ++c) k(r, c) = k(c, r);
     }
     const bool holds = stick_trial(k, problem, group, held);
     const bool slides = slide_trial(data, k, problem, group, held, slid);
