@@ -1,5 +1,5 @@
 // Steps the contact test models (docs/contact.md) through sticking,
-// sliding, rolling, bouncing and tumbling, with callgrind collecting only
+// sliding, rolling, bouncing and tumbling, free bodies and bodies in joints, with callgrind collecting only
 // inside sampled step() calls, each dumped with its model's name. Run by
 // contact_instructions.sh under valgrind, which checks that every sampled
 // step of a model executes the same number of instructions.
@@ -7,14 +7,15 @@
 
 #include "contact_balls.hpp"
 #include "contact_incline.hpp"
+#include "contact_jointed.hpp"
 #include "contact_tumble.hpp"
 
 namespace {
 
 template <class State, class Workspace, class Step>
-void sample(const char* name, State s, Step step) {
+void sample(const char* name, State s, Step step, int steps = 4000) {
   Workspace w;
-  for (int n = 0; n < 4000; ++n) {
+  for (int n = 0; n < steps; ++n) {
     const bool sampled = n % 40 == 0;
     if (sampled) CALLGRIND_TOGGLE_COLLECT;
     step(s, w);
@@ -37,4 +38,9 @@ int main() {
                                              [](incline::State& s, incline::Workspace& w) { incline::step(s, w); });
   sample<tumble::State, tumble::Workspace>("contact_tumble", tumble::initial_state(),
                                            [](tumble::State& s, tumble::Workspace& w) { tumble::step(s, w); });
+  // The wheel slides and rolls, the pinned rod rebounds and rests, the
+  // welded boxes stick and slide (contacts on bodies in joints).
+  namespace jointed = mbrt::models::contact_jointed;
+  sample<jointed::State, jointed::Workspace>(
+      "contact_jointed", jointed::initial_state(), [](jointed::State& s, jointed::Workspace& w) { jointed::step(s, w); }, 2000);
 }

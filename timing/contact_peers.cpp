@@ -6,12 +6,18 @@
 //          a = g (sin 30 - mu_k cos 30);
 //   roll   a solid ball launched at v0 = 2 m/s without spin, mu_k = 0.3:
 //          rolls from t = 2 v0 / (7 mu_k g) on at 5/7 v0 (speed at 1.5 s,
-//          and the first step end with slip |v + w x (-r n)| < 1e-3 m/s).
+//          and the first step end with slip |v + w x (-r n)| < 1e-3 m/s);
+//   wheel  the same ball as a wheel (2 kg, J = 0.008 kg m^2) on a revolute
+//          joint about y to an axle body (3 kg, its centre of mass on the
+//          wheel's centre), both launched at v0 = 2 m/s, mu_k = 0.3: friction
+//          mu_k (m + m_a) g slows both and spins up the wheel alone, which
+//          rolls from t = v0 / (mu_k g (1 + (m + m_a) r^2 / J)) on at
+//          v0 (1 - 1 / (1 + (m + m_a) r^2 / J)) (the same two measures).
 // Every case and engine at h = 4, 2, 1 and 0.5 ms, all of them interleaved
 // in each of REPETITIONS rounds (the machine is shared: load hits all
 // alike); ns per step is the median over the rounds of a whole run's steps.
 // Built and run by timing/contact_peers, which generates the mbrt models
-// (stick_hK, slide_hK, roll_hK; K = 4, 2, 1, 05) and defines
+// (stick_hK, slide_hK, roll_hK, wheel_hK; K = 4, 2, 1, 05) and defines
 // MBRT_WITH_MUJOCO when MuJoCo's header is there.
 //   contact_peers OUT.csv [REPETITIONS]
 #include <algorithm>
@@ -42,6 +48,10 @@
 #include "stick_h1.hpp"
 #include "stick_h2.hpp"
 #include "stick_h4.hpp"
+#include "wheel_h05.hpp"
+#include "wheel_h1.hpp"
+#include "wheel_h2.hpp"
+#include "wheel_h4.hpp"
 
 #ifdef MBRT_WITH_MUJOCO
 #include <mujoco/mujoco.h>
@@ -51,7 +61,8 @@ namespace {
 
 using mbrt::Vec3;
 
-// The models' values (tests/models/contact_incline.yaml, contact_balls.yaml).
+// The models' values (tests/models/contact_incline.yaml, contact_balls.yaml,
+// contact_jointed.yaml).
 constexpr double kG = 9.81;
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr double kStickAngle = 25 * kDeg, kStickMu = 0.5, kStickTime = 10.0;  // mu_s
@@ -67,6 +78,16 @@ double slide_distance(double t) { return 0.5 * kG * (std::sin(kSlideAngle) - kSl
 // up, r w = 5/2 mu g t, until v = r w: t = 2 v0 / (7 mu g), v = 5/7 v0 after.
 const double kRollStart = 2 * kV0 / (7 * kRollMu * kG);  // 0.194 s
 const double kRollSpeed = 5.0 / 7.0 * kV0;
+// The wheel on its axle (contact_jointed.yaml: hub and tyre). The hub passes
+// no torque about y and the axle's centre of mass is on it, so the axle only
+// translates: friction mu (m + m_a) g slows both, v = v0 - mu g t, and spins
+// the wheel alone, J w' = mu (m + m_a) g r, until v = r w:
+// t = v0 / (mu g (1 + k)), v = v0 (1 - 1 / (1 + k)), k = (m + m_a) r^2 / J.
+constexpr double kWheelMass = 2.0, kWheelInertia = 0.008, kAxleMass = 3.0;  // kBallRadius, kV0, kRollMu as the ball
+const char* const kAxleInertia = "0.01 0.02 0.01";
+constexpr double kWheelK = (kWheelMass + kAxleMass) * kBallRadius * kBallRadius / kWheelInertia;  // 6.25
+const double kWheelStart = kV0 / (kRollMu * kG * (1 + kWheelK));  // 0.0937 s
+const double kWheelSpeed = kV0 * (1 - 1 / (1 + kWheelK));          // 1.7241 m/s
 
 // The plane tilted by th about y (the mbrt models' normal) and its downhill direction.
 Vec3 normal(double th) { return {std::sin(th), 0.0, std::cos(th)}; }
@@ -90,13 +111,16 @@ double timed(long n, Step&& step) {
   return std::chrono::duration<double, std::nano>(t1 - t0).count() / static_cast<double>(n);
 }
 
-// The roll measures from the first step end that rolls (NaN: never) and the final speed.
-std::vector<double> roll_errors(double t_rolling, double speed) {
-  return {std::abs(speed - kRollSpeed), std::abs(t_rolling - kRollStart)};
+// The roll measures from the first step end that rolls (NaN: never) and the
+// final speed, against the closed forms' start and speed.
+std::vector<double> roll_errors(double t_rolling, double speed, double start = kRollStart, double rolling = kRollSpeed) {
+  return {std::abs(speed - rolling), std::abs(t_rolling - start)};
 }
 
-// ---- mbrt: each generated model holds one body, index 0 (the script cuts it
-// out of the test model so that a case's cost is its own body's).
+// ---- mbrt: each generated model holds one case's bodies, its body of
+// interest at index 0 (the script cuts them out of the test model so that a
+// case's cost is its own bodies'; the wheel's model is the wheel, the axle,
+// the hub and the tyre).
 
 #define MBRT_MODEL(NS)                                                                            \
   struct NS {                                                                                     \
@@ -110,6 +134,7 @@ namespace gen {
 MBRT_MODEL(stick_h4) MBRT_MODEL(stick_h2) MBRT_MODEL(stick_h1) MBRT_MODEL(stick_h05)
 MBRT_MODEL(slide_h4) MBRT_MODEL(slide_h2) MBRT_MODEL(slide_h1) MBRT_MODEL(slide_h05)
 MBRT_MODEL(roll_h4) MBRT_MODEL(roll_h2) MBRT_MODEL(roll_h1) MBRT_MODEL(roll_h05)
+MBRT_MODEL(wheel_h4) MBRT_MODEL(wheel_h2) MBRT_MODEL(wheel_h1) MBRT_MODEL(wheel_h05)
 }  // namespace gen
 
 // Stick: the box on its 4 corners (box_stick), the centre's displacement within the plane.
@@ -134,8 +159,9 @@ Run mbrt_slide() {
   return {{std::abs((s.rigid[0].r - r0).dot(downhill(kSlideAngle)) - slide_distance(n * M::h))}, ns};
 }
 
-// Roll: the ball (slider), the slip of its contact point (r below the centre) each step.
-template <class M>
+// Roll: the ball (slider), the slip of its contact point (r below the centre)
+// each step. Wheel: the same on the wheel, body 0 (the axle is body 1).
+template <class M, bool kWheel = false>
 Run mbrt_roll() {
   auto s = M::initial_state();
   const auto w = std::make_unique<typename M::Workspace>();
@@ -147,7 +173,8 @@ Run mbrt_roll() {
     if (std::isnan(t_rolling) && std::hypot(slip.x(), slip.y()) < kRollingSlip) t_rolling = s.t;
     return ok;
   });
-  return {roll_errors(t_rolling, std::hypot(s.rigid[0].v.x(), s.rigid[0].v.y())), ns};
+  const double speed = std::hypot(s.rigid[0].v.x(), s.rigid[0].v.y());
+  return {kWheel ? roll_errors(t_rolling, speed, kWheelStart, kWheelSpeed) : roll_errors(t_rolling, speed), ns};
 }
 
 #ifdef MBRT_WITH_MUJOCO
@@ -186,6 +213,15 @@ const std::string kBox = std::string("<body pos='0 0 0.05'><freejoint/><inertial
 // The ball touching the plane (contact_balls.yaml's slider: 2 kg, I = 2/5 m r^2).
 const std::string kBall = "<body pos='0 0 0.1'><freejoint/><inertial pos='0 0 0' mass='2' diaginertia='0.008 0.008 0.008'/>"
                           "<geom type='sphere' size='0.1'/></body>";
+
+// The wheel hinged about y to the axle, which floats (a free joint): a hinge
+// about the axle's y axis through the wheel's centre, both centres of mass
+// there (contact_jointed.yaml's wheel, axle and hub). The axle has no geom.
+const std::string kWheel = std::string("<body pos='0 0 0.1'><freejoint/><inertial pos='0 0 0' mass='") + num(kAxleMass) +
+                           "' diaginertia='" + kAxleInertia + "'/><body pos='0 0 0'><joint type='hinge' axis='0 1 0'/>"
+                           "<inertial pos='0 0 0' mass='" + num(kWheelMass) + "' diaginertia='" + num(kWheelInertia) + " " +
+                           num(kWheelInertia) + " " + num(kWheelInertia) + "'/><geom type='sphere' size='" +
+                           num(kBallRadius) + "'/></body></body>";
 
 // A model and its data, loaded from MJCF text through a virtual file.
 class Mujoco {
@@ -253,6 +289,26 @@ Run mujoco_roll(const Variant& v, double h) {
   });
   return {roll_errors(t_rolling, std::hypot(mj.d->qvel[0], mj.d->qvel[1])), ns};
 }
+
+// Wheel: qpos is the axle's free joint (x, y, z, quaternion), then the hinge
+// angle; qvel the axle's world velocity, its angular velocity in its own axes,
+// then the hinge rate about the axle's y. The wheel's centre is the axle's.
+Run mujoco_wheel(const Variant& v, double h) {
+  Mujoco mj(mjcf(0.0, kRollMu, kWheel), h, v);
+  if (mj.m->nq != 8 || mj.m->nv != 7) throw std::runtime_error("MuJoCo: the wheel is not a free joint and a hinge");
+  mj.d->qvel[0] = kV0;
+  double t_rolling = std::numeric_limits<double>::quiet_NaN();
+  const double ns = timed(steps(kRollTime, h), [&] {
+    const bool ok = mj.step();
+    const double w_axle[3] = {mj.d->qvel[3], mj.d->qvel[4] + mj.d->qvel[6], mj.d->qvel[5]};  // the wheel's, in the axle's axes
+    double w[3];
+    mju_rotVecQuat(w, w_axle, mj.d->qpos + 3);  // to world axes
+    const double slip = std::hypot(mj.d->qvel[0] - kBallRadius * w[1], mj.d->qvel[1] + kBallRadius * w[0]);
+    if (std::isnan(t_rolling) && slip < kRollingSlip) t_rolling = mj.d->time;
+    return ok;
+  });
+  return {roll_errors(t_rolling, std::hypot(mj.d->qvel[0], mj.d->qvel[1]), kWheelStart, kWheelSpeed), ns};
+}
 #endif
 
 // What each case measures: its name in the CSV and the unit.
@@ -263,6 +319,7 @@ struct Measure {
 const std::vector<Measure> kStickMeasures{{"stick", "m"}};
 const std::vector<Measure> kSlideMeasures{{"slide", "m"}};
 const std::vector<Measure> kRollMeasures{{"roll_speed", "m/s"}, {"roll_time", "s"}};
+const std::vector<Measure> kWheelMeasures{{"wheel_speed", "m/s"}, {"wheel_time", "s"}};
 
 struct Entry {
   const std::vector<Measure>* measures;
@@ -272,11 +329,12 @@ struct Entry {
   std::vector<double> errors, ns;
 };
 
-template <class Stick, class Slide, class Roll>
+template <class Stick, class Slide, class Roll, class Wheel>
 void add_mbrt(std::vector<Entry>& e) {
   e.push_back({&kStickMeasures, "mbrt staggered-pcst", Stick::h, mbrt_stick<Stick>, {}, {}});
   e.push_back({&kSlideMeasures, "mbrt staggered-pcst", Slide::h, mbrt_slide<Slide>, {}, {}});
   e.push_back({&kRollMeasures, "mbrt staggered-pcst", Roll::h, mbrt_roll<Roll>, {}, {}});
+  e.push_back({&kWheelMeasures, "mbrt staggered-pcst", Wheel::h, mbrt_roll<Wheel, true>, {}, {}});
 }
 
 double median(std::vector<double> x) {
@@ -294,16 +352,17 @@ int main(int argc, char** argv) {
   }
   const int repetitions = argc > 2 ? std::atoi(argv[2]) : 5;
   std::vector<Entry> entries;
-  add_mbrt<gen::stick_h4, gen::slide_h4, gen::roll_h4>(entries);
-  add_mbrt<gen::stick_h2, gen::slide_h2, gen::roll_h2>(entries);
-  add_mbrt<gen::stick_h1, gen::slide_h1, gen::roll_h1>(entries);
-  add_mbrt<gen::stick_h05, gen::slide_h05, gen::roll_h05>(entries);
+  add_mbrt<gen::stick_h4, gen::slide_h4, gen::roll_h4, gen::wheel_h4>(entries);
+  add_mbrt<gen::stick_h2, gen::slide_h2, gen::roll_h2, gen::wheel_h2>(entries);
+  add_mbrt<gen::stick_h1, gen::slide_h1, gen::roll_h1, gen::wheel_h1>(entries);
+  add_mbrt<gen::stick_h05, gen::slide_h05, gen::roll_h05, gen::wheel_h05>(entries);
 #ifdef MBRT_WITH_MUJOCO
   for (const double h : {4e-3, 2e-3, 1e-3, 5e-4})
     for (const Variant& v : kVariants) {
       entries.push_back({&kStickMeasures, v.name, h, [v, h] { return mujoco_stick(v, h); }, {}, {}});
       entries.push_back({&kSlideMeasures, v.name, h, [v, h] { return mujoco_slide(v, h); }, {}, {}});
       entries.push_back({&kRollMeasures, v.name, h, [v, h] { return mujoco_roll(v, h); }, {}, {}});
+      entries.push_back({&kWheelMeasures, v.name, h, [v, h] { return mujoco_wheel(v, h); }, {}, {}});
     }
 #endif
   try {

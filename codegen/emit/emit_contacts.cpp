@@ -2,6 +2,7 @@
 // State's contact fields, and the data and body views struct Model hands to
 // mbrt::contact_step (include/mbrt/contacts.hpp).
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -109,6 +110,40 @@ void Emitter::contact_members(std::ostringstream& o) const {
     }
   }
   o << "}\n";
+  if (jointed) mechanism_kernels(o);
+}
+
+// B u, S^-1 x and u -= scale M^-1 B^T lambda over one contact mechanism's
+// joints (a kContactGroups index): a contact's impulse moves only its own
+// mechanism, so its columns of K need only its rows of S.
+void Emitter::mechanism_kernels(std::ostringstream& o) const {
+  const auto groups = contacts_by_mechanism(a_.contacts);
+  std::vector<std::vector<bool>> blocks_of(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const int mechanism = a_.contacts[static_cast<size_t>(groups[g][0])].mechanism;
+    for (int j = 0; j < blocks(); ++j) {
+      const auto moving = moving_bodies(j);
+      blocks_of[g].push_back(!moving.empty() && a_.mechanism[static_cast<size_t>(moving[0])] == mechanism);
+    }
+  }
+  const auto cases = [&](const std::function<std::string(const std::vector<bool>&)>& lines) {
+    std::string text = "  switch (group) {\n";
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const std::string body = lines(blocks_of[g]);
+      if (!body.empty()) text += "    case " + std::to_string(g) + ":\n" + body + "      break;\n";
+    }
+    return text + "    default: break;  // a free body's group: no joints\n  }\n";
+  };
+  o << "// One contact mechanism's joints (kContactGroups index): B u, S^-1 x and\n"
+    << "// u -= scale M^-1 B^T lambda over its own rows; the other rows stay zero.\n"
+    << "static Rows jacobian_times_in(int group, const ConstraintSystem& c, const BodyVectors& u) noexcept {\n"
+    << "  Rows y = Rows::Zero();\n"
+    << cases([&](const std::vector<bool>& in) { return jacobian_lines(in, "      "); }) << "  return y;\n}\n"
+    << "static void solve_in(int group, const ConstraintSystem& c, Rows& x) noexcept {\n"
+    << cases([&](const std::vector<bool>& in) { return solve_lines(in, "      ", nullptr); }) << "}\n"
+    << "static void subtract_constraint_forces_in(int group, const ConstraintSystem& c, const Rows& lambda, double scale,\n"
+    << "                                          BodyVectors& u) noexcept {\n"
+    << cases([&](const std::vector<bool>& in) { return constraint_force_lines(in, "      "); }) << "}\n";
 }
 
 }  // namespace mbrt::codegen

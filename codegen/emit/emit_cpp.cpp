@@ -543,10 +543,7 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
   o << "// (c, u) => (B u). " << jacobian.text() << ".\n"
     << "static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  Rows y;\n";
   if (blocks() == 0) o << "  (void)c;\n  (void)u;\n";
-  for (int ji = 0; ji < blocks(); ++ji) {
-    o << "  " << seg("y", ji) << " = " << jacobian_product(ji, "u") << ";\n";
-  }
-  o << "  return y;\n}\n\n";
+  o << jacobian_lines(every_block(), "  ") << "  return y;\n}\n\n";
   if (scheme_kind() != Scheme::staggered_nps) {
     OpCount forces;
     for (int j = 0; j < blocks(); ++j) {
@@ -560,12 +557,7 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
       << "static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,\n"
       << "                                BodyVectors& u) noexcept {\n";
     if (blocks() == 0) o << "  (void)c;\n  (void)lambda;\n  (void)scale;\n  (void)u;\n";
-    for (int ji = 0; ji < blocks(); ++ji) {
-      for (int b : moving_bodies(ji)) {
-        o << "  u" << at(b) << " -= scale * (" << mbt(ji, b) << " * " << seg("lambda", ji) << ");\n";
-      }
-    }
-    o << "}\n\n";
+    o << constraint_force_lines(every_block(), "  ") << "}\n\n";
   }
   o << "// (c) => (phi), (c) => (quad): stacked position residuals and acceleration terms.\n";
   stacked(o, "phi");
@@ -673,33 +665,72 @@ void Emitter::factorization(std::ostringstream& o) const {
   OpCount solving;
   body.str("");
   if (blocks() == 0) body << "  (void)c;\n  (void)x;\n";
+  body << solve_lines(every_block(), "  ", &solving);
+  o << "// (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.\n"
+    << "// " << solving.text() << ".\n"
+    << "static void solve(const ConstraintSystem& c, Rows& x) noexcept {\n" << body.str() << "}\n\n";
+}
+
+std::vector<bool> Emitter::every_block() const { return std::vector<bool>(static_cast<size_t>(blocks()), true); }
+
+std::string Emitter::jacobian_lines(const std::vector<bool>& in, const std::string& indent) const {
+  std::string lines;
+  for (int ji = 0; ji < blocks(); ++ji) {
+    if (in[static_cast<size_t>(ji)]) lines += indent + seg("y", ji) + " = " + jacobian_product(ji, "u") + ";\n";
+  }
+  return lines;
+}
+
+std::string Emitter::constraint_force_lines(const std::vector<bool>& in, const std::string& indent) const {
+  std::string lines;
+  for (int ji = 0; ji < blocks(); ++ji) {
+    if (!in[static_cast<size_t>(ji)]) continue;
+    for (int b : moving_bodies(ji)) {
+      lines += indent + "u" + at(b) + " -= scale * (" + mbt(ji, b) + " * " + seg("lambda", ji) + ");\n";
+    }
+  }
+  return lines;
+}
+
+// Forward and backward substitution with S's factor over the blocks `in`
+// (whole components of S's pattern: no fill crosses between components).
+std::string Emitter::solve_lines(const std::vector<bool>& in, const std::string& indent, OpCount* count) const {
+  const auto& order = a_.pattern.order;
+  const auto& lower = a_.pattern.lower;
+  auto in_lower = [&](int j, int i) {
+    const auto& v = lower[static_cast<size_t>(j)];
+    return std::find(v.begin(), v.end(), i) != v.end();
+  };
+  OpCount solving;
+  std::ostringstream body;
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
-    body << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
+    if (!in[static_cast<size_t>(k)]) continue;
+    body << indent << "{  // " << jname(k) << "\n" << indent << "  " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
     for (size_t pj = 0; pj < pk; ++pj) {
       const int j = order[pj];
       if (!in_lower(j, k)) continue;
-      body << "    y -= " << L(k, j) << " * " << seg("x", j) << ";\n";
+      body << indent << "  y -= " << L(k, j) << " * " << seg("x", j) << ";\n";
       solving += ops::product(rows(k), rows(j), 1);
       solving += ops::sum(rows(k), 1);
     }
-    body << "    mbrt::solve_lower(" << L(k, k) << ", y);\n    " << seg("x", k) << " = y;\n  }\n";
+    body << indent << "  mbrt::solve_lower(" << L(k, k) << ", y);\n" << indent << "  " << seg("x", k) << " = y;\n" << indent << "}\n";
     solving += ops::triangular_solve(rows(k));
   }
   for (size_t pk = order.size(); pk-- > 0;) {
     const int k = order[pk];
-    body << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
+    if (!in[static_cast<size_t>(k)]) continue;
+    body << indent << "{  // " << jname(k) << "\n" << indent << "  " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
     for (int i : lower[static_cast<size_t>(k)]) {
-      body << "    y -= " << L(i, k) << ".transpose() * " << seg("x", i) << ";\n";
+      body << indent << "  y -= " << L(i, k) << ".transpose() * " << seg("x", i) << ";\n";
       solving += ops::product(rows(k), rows(i), 1);
       solving += ops::sum(rows(k), 1);
     }
-    body << "    mbrt::solve_lower_transposed(" << L(k, k) << ", y);\n    " << seg("x", k) << " = y;\n  }\n";
+    body << indent << "  mbrt::solve_lower_transposed(" << L(k, k) << ", y);\n" << indent << "  " << seg("x", k) << " = y;\n" << indent << "}\n";
     solving += ops::triangular_solve(rows(k));
   }
-  o << "// (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.\n"
-    << "// " << solving.text() << ".\n"
-    << "static void solve(const ConstraintSystem& c, Rows& x) noexcept {\n" << body.str() << "}\n\n";
+  if (count) *count += solving;
+  return body.str();
 }
 
 void Emitter::stacked(std::ostringstream& o, const std::string& member) const {

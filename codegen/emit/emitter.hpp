@@ -227,6 +227,12 @@ class Emitter {
   void joint_spring_load(std::ostringstream& o, const Force& f, const std::string& n) const;  // spatial or planar
   void constraint_stage(std::ostringstream& o) const;
   void factorization(std::ostringstream& o) const;  // factorize(c) and solve(c, x) over the pattern of S
+  // The bodies of jacobian_times, subtract_constraint_forces and solve over
+  // the constraint blocks marked in `in` (every_block(): all of them).
+  std::vector<bool> every_block() const;
+  std::string jacobian_lines(const std::vector<bool>& in, const std::string& indent) const;
+  std::string constraint_force_lines(const std::vector<bool>& in, const std::string& indent) const;
+  std::string solve_lines(const std::vector<bool>& in, const std::string& indent, OpCount* count) const;
   // Operations (op_count.hpp) of M^-1 J^T for body b and r rows, and of s_block(i, j).
   OpCount inverse_mass_ops(int b, int r) const;
   OpCount s_block_ops(int i, int j) const;
@@ -259,6 +265,7 @@ class Emitter {
   std::string contact_names() const;
   int contact_sweeps() const;
   std::string contact_groups() const;  // struct Model's kContactGroups
+  void mechanism_kernels(std::ostringstream& o) const;  // jacobian_times_in, solve_in, subtract_constraint_forces_in
   bool has_inputs() const { return !m_.inputs.empty(); }
   bool has_outputs() const { return !m_.outputs.empty(); }
   void input_declarations(std::ostringstream& o) const;   // index constants, ranges, safe values

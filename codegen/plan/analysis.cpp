@@ -366,23 +366,31 @@ namespace {
 // The contacts in body axes. A contact's body moves freely: the impulses
 // act on its mass alone, after the scheme's step, which the constraint forces
 // of a joint would have to share (docs/contact.md).
-std::vector<ContactPlan> contact_plans(const Model& model, const Analysis& a) {
-  // Mechanisms: bodies joined by joints or drivers (union-find over the
-  // blocks, ground excluded); a contact's impulse moves its whole mechanism.
+// Mechanisms: bodies joined by joints or drivers (union-find over the
+// blocks, ground excluded), each named by its first body.
+std::vector<int> mechanisms(const Model& model, const std::vector<ConstraintBlock>& constraints) {
   std::vector<int> root(model.bodies.size());
   for (size_t b = 0; b < root.size(); ++b) root[b] = static_cast<int>(b);
   const auto find = [&](int b) {
     while (root[static_cast<size_t>(b)] != b) b = root[static_cast<size_t>(b)];
     return b;
   };
+  for (const ConstraintBlock& block : constraints) {
+    if (block.body1 >= 0 && block.body2 >= 0) {
+      const int r1 = find(block.body1), r2 = find(block.body2);
+      root[static_cast<size_t>(std::max(r1, r2))] = std::min(r1, r2);
+    }
+  }
+  for (size_t b = 0; b < root.size(); ++b) root[b] = find(static_cast<int>(b));
+  return root;
+}
+
+// A contact's impulse moves its body's whole mechanism (docs/contact.md).
+std::vector<ContactPlan> contact_plans(const Model& model, const Analysis& a) {
   std::vector<const ConstraintBlock*> first_block(model.bodies.size(), nullptr);  // a body's first joint or driver
   for (const ConstraintBlock& block : a.constraints) {
     for (const int b : {block.body1, block.body2}) {
       if (b >= 0 && !first_block[static_cast<size_t>(b)]) first_block[static_cast<size_t>(b)] = &block;
-    }
-    if (block.body1 >= 0 && block.body2 >= 0) {
-      const int r1 = find(block.body1), r2 = find(block.body2);
-      root[static_cast<size_t>(std::max(r1, r2))] = std::min(r1, r2);
     }
   }
   std::vector<ContactPlan> plans;
@@ -410,7 +418,7 @@ std::vector<ContactPlan> contact_plans(const Model& model, const Analysis& a) {
       throw ModelError(c.where, key + ".body",
                        "body '" + model.body_name(c.body) + "' has a tunable mass or inertia: a contact's body takes the file's values");
     }
-    ContactPlan plan{static_cast<int>(i), c.body, Eigen::Vector3d::Zero(), {}, {}, Eigen::Matrix3d::Zero(), find(c.body), in_joint};
+    ContactPlan plan{static_cast<int>(i), c.body, Eigen::Vector3d::Zero(), {}, {}, Eigen::Matrix3d::Zero(), a.mechanism[static_cast<size_t>(c.body)], in_joint};
     plan.offset = body_point(model, c.body, c.point, c.where, key + (c.type == ContactType::sphere ? ".center" : ".point"));
     complete_triad(c.plane_normal, plan.tangent1, plan.tangent2);
     if (body.rigid) plan.inverse_inertia = model.bodies[static_cast<size_t>(c.body)].inertia.inverse();
@@ -577,6 +585,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
                            "): the schemes in absolute coordinates do not support it yet (docs/friction.md)");
     }
   }
+  a.mechanism = mechanisms(model, a.constraints);
   a.contacts = contact_plans(model, a);
   if (mbrt::joint_space(model.solver.scheme)) {
     a.tree_frames = plan_tree_frames(model, a.constraints);

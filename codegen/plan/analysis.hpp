@@ -135,6 +135,7 @@ struct Analysis {
   std::vector<ForcePlan> forces;
   std::vector<InputPlan> inputs;  // same order as Model::inputs
   std::vector<ContactPlan> contacts;  // same order as Model::contacts
+  std::vector<int> mechanism;  // per body: the first body of its mechanism (bodies joined by joints or drivers)
   FactorPattern pattern;
   bool gravity = false;
   bool velocity_dependent_forces = false;  // gyroscopic or damping terms: two stages per step

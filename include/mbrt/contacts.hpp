@@ -123,21 +123,37 @@ template <class M>
 struct Joints {
   static constexpr int kRefinements = 2;
   const typename M::ConstraintSystem* c;  // null where no contact's body is in a joint
-  // (x) => (x with the joints' share; z, the joints' impulses).
-  typename M::Rows constrain(typename M::BodyVectors& x) const noexcept {
-    const typename M::Rows bx = M::jacobian_times(*c, x);
+  // (x) => (x with the joints' share; z, the joints' impulses), over one
+  // group's mechanism (M::kContactGroups index) or, group < 0, all of them.
+  typename M::Rows constrain(typename M::BodyVectors& x, int group = -1) const noexcept {
+    const typename M::Rows bx = jacobian_times(group, x);
     typename M::Rows z = bx;
-    M::solve(*c, z);
+    solve(group, z);
     for (int i = 0; i < kRefinements; ++i) {
       typename M::BodyVectors d;
       for (Vec6& e : d) e.setZero();
-      M::subtract_constraint_forces(*c, z, 1.0, d);  // d = -M^-1 B^T z
-      typename M::Rows r = bx + M::jacobian_times(*c, d);  // B x - S z
-      M::solve(*c, r);
+      subtract_forces(group, z, d);  // d = -M^-1 B^T z
+      typename M::Rows r = bx + jacobian_times(group, d);  // B x - S z
+      solve(group, r);
       z += r;
     }
-    M::subtract_constraint_forces(*c, z, 1.0, x);
+    subtract_forces(group, z, x);
     return z;
+  }
+
+ private:
+  // The whole model's kernels or one mechanism's (a constant per call site:
+  // the same work every step).
+  typename M::Rows jacobian_times(int group, const typename M::BodyVectors& u) const noexcept {
+    return group < 0 ? M::jacobian_times(*c, u) : M::jacobian_times_in(group, *c, u);
+  }
+  void solve(int group, typename M::Rows& x) const noexcept {
+    if (group < 0) M::solve(*c, x);
+    else M::solve_in(group, *c, x);
+  }
+  void subtract_forces(int group, const typename M::Rows& z, typename M::BodyVectors& u) const noexcept {
+    if (group < 0) M::subtract_constraint_forces(*c, z, 1.0, u);
+    else M::subtract_constraint_forces_in(group, *c, z, 1.0, u);
   }
 };
 
@@ -148,7 +164,7 @@ struct Joints {
 // (the penetration projection's).
 template <class M, std::size_t N, std::size_t G>
 void add_joints(const std::array<ContactPoint, N>& data, const ContactProblem<N>& p, const ContactGroup<G>& group,
-                const Joints<M>& joints, Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k,
+                int group_index, const Joints<M>& joints, Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k,
                 std::array<double, N>& compliance) noexcept {
   const int used = members(group);
   for (int lj = 0; lj < used; ++lj) {
@@ -158,7 +174,7 @@ void add_joints(const std::array<ContactPoint, N>& data, const ContactProblem<N>
       for (Vec6& e : x) e.setZero();
       const Vec6 free = body_response(data[j], p.frame[j], Vec3::Unit(b));
       x[static_cast<std::size_t>(data[j].body)] = free;
-      joints.constrain(x);
+      joints.constrain(x, group_index);
       x[static_cast<std::size_t>(data[j].body)] -= free;  // the joints' share alone
       for (int li = lj; li < used; ++li) {
         const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(li)]);
@@ -213,10 +229,15 @@ typename M::Rows resolve_contacts(typename M::State& s, const contact_detail::Jo
   // Gauss-Seidel's (picked by index: the same work whatever is picked).
   std::array<Vec3, N> impulse, held, slid, swept;
   std::array<double, N> stuck, compliance{};
-  for (const auto& group : M::kContactGroups) {
+  std::array<int, N> group_of{};  // each contact's M::kContactGroups index
+  for (std::size_t g = 0; g < M::kContactGroups.size(); ++g) {
+    const auto& group = M::kContactGroups[g];
+    for (int l = 0; l < contact_detail::members(group); ++l) group_of[static_cast<std::size_t>(group[static_cast<std::size_t>(l)])] = static_cast<int>(g);
     auto k = contact_detail::delassus_matrix(data, problem, group);
     if constexpr (M::kJointedContacts) {
-      if (data[static_cast<std::size_t>(group[0])].jointed) contact_detail::add_joints(data, problem, group, joints, k, compliance);
+      if (data[static_cast<std::size_t>(group[0])].jointed) {
+        contact_detail::add_joints(data, problem, group, static_cast<int>(g), joints, k, compliance);
+      }
     }
     for (int r = 0; r < k.rows(); ++r) {  // both triangles, for Gauss-Seidel's rows
       for (int c = r + 1; c < k.cols(); ++c) k(r, c) = k(c, r);
@@ -271,7 +292,7 @@ typename M::Rows resolve_contacts(typename M::State& s, const contact_detail::Jo
           typename M::BodyVectors shift;
           for (Vec6& e : shift) e.setZero();
           shift[static_cast<std::size_t>(data[i].body)] = contact_detail::body_response(data[i], f, push);
-          joints.constrain(shift);
+          joints.constrain(shift, group_of[i]);
           M::displace(shift, s);
           continue;
         }
