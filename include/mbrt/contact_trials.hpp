@@ -95,7 +95,10 @@ Eigen::Matrix<double, n, 1> least_norm_solve(const Eigen::Matrix<double, n, n>& 
   for (int j = 0; j < used; ++j) {  // Cholesky of the shifted leading block, lower triangle
     double d = k(j, j) * (1.0 + 1e-10 * weight[j]);
     for (int q = 0; q < j; ++q) d -= l(j, q) * l(j, q);
-    const double positive = static_cast<double>(d > 0.0);  // else 1: a usable factor (arithmetic, no branch)
+    // 1 where d > 0 (else a usable pivot of 1: a row dependent on the ones
+    // before it, as a contact's tangent held by a joint), from the sign bit:
+    // a comparison here compiled to a branch.
+    const double positive = 0.5 + 0.5 * std::copysign(1.0, d - 1e-300);
     l(j, j) = std::sqrt(positive * d + (1.0 - positive));
     for (int i = j + 1; i < used; ++i) {
       double e = k(i, j);
