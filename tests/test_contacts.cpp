@@ -53,6 +53,20 @@ const double kDeg = std::acos(-1.0) / 180.0;
 // (sin theta, 0, cos theta), tests/models/contact_incline.yaml).
 mbrt::Vec3 downhill(double theta) { return mbrt::Vec3(std::cos(theta), 0.0, -std::sin(theta)); }
 
+// A 1 kg body held on 25 degrees by the contacts `corners`: their normal
+// and friction forces sum to m g cos 25 and m g sin 25 up the slope.
+template <class State, std::size_t N>
+void check_held_on_25_degrees(const State& s, const std::array<int, N>& corners) {
+  double normal = 0.0;
+  mbrt::Vec3 friction = mbrt::Vec3::Zero();
+  for (const int c : corners) {
+    normal += s.contact_normal[static_cast<std::size_t>(c)];
+    friction += s.contact_tangential[static_cast<std::size_t>(c)];
+  }
+  CHECK(normal == doctest::Approx(kG * std::cos(25 * kDeg)).epsilon(1e-9));
+  CHECK((friction + kG * std::sin(25 * kDeg) * downhill(25 * kDeg)).norm() < 1e-9);
+}
+
 // The incline in one scheme, 1 s: on 25 degrees nothing moves and every
 // contact sticks, friction holding gravity's pull; on 30 degrees the
 // particle and the box slide a t^2 / 2 down the slope under mu_k N.
@@ -87,14 +101,7 @@ void check_incline() {
   CHECK((M::particle_slide(s).v - a * t * downhill(30 * kDeg)).norm() < 1e-9);
   // Contact forces: the stuck bodies' normal and friction forces sum to
   // m g cos 25 and m g sin 25 (1 kg each); the sliding particle's friction is mu_k N.
-  double normal = 0.0;
-  mbrt::Vec3 friction = mbrt::Vec3::Zero();
-  for (const int c : M::box_stick_corners()) {
-    normal += s.contact_normal[c];
-    friction += s.contact_tangential[c];
-  }
-  CHECK(normal == doctest::Approx(kG * std::cos(25 * kDeg)).epsilon(1e-9));
-  CHECK((friction + kG * std::sin(25 * kDeg) * downhill(25 * kDeg)).norm() < 1e-9);
+  check_held_on_25_degrees(s, M::box_stick_corners());
   const int foot = M::foot_slide();
   CHECK(s.contact_normal[foot] == doctest::Approx(kG * std::cos(30 * kDeg)).epsilon(1e-12));
   CHECK((s.contact_tangential[foot] + 0.4 * s.contact_normal[foot] * downhill(30 * kDeg)).norm() < 1e-12);
@@ -317,14 +324,7 @@ void check_jointed() {
       CHECK(std::abs(velocity.dot(downhill(30 * kDeg)) - a * s.t) < M::kSlideTolerance);
       CHECK((com - slide0 - expected).norm() < 1e3 * M::kSlideTolerance);
       // The stuck box's forces sum to m g cos 25 and m g sin 25 (1 kg in all).
-      double normal = 0.0;
-      mbrt::Vec3 friction = mbrt::Vec3::Zero();
-      for (const int c : M::stick_corners()) {
-        normal += s.contact_normal[c];
-        friction += s.contact_tangential[c];
-      }
-      CHECK(normal == doctest::Approx(kG * std::cos(25 * kDeg)).epsilon(1e-9));
-      CHECK((friction + kG * std::sin(25 * kDeg) * downhill(25 * kDeg)).norm() < 1e-9);
+      check_held_on_25_degrees(s, M::stick_corners());
     }
   }
   // No step creates energy in the wheel's or the rod's mechanism beyond the

@@ -95,12 +95,6 @@ inline Vec3 point_velocity_of(const ContactPoint& c, const Frame& f, const Vec6&
   return r;
 }
 
-// The body's velocity change from an impulse dP at the point.
-inline void apply_impulse(const ContactPoint& c, const ContactBody& b, const Frame& f, const Vec3& dp) noexcept {
-  *b.v += linear_response(c, dp);
-  if (b.w) *b.w += angular_response(c, f, dp);
-}
-
 // The body's displacement from a position impulse dP at the point.
 inline void displace(const ContactPoint& c, const ContactBody& b, const Frame& f, const Vec3& dp) noexcept {
   *b.r += linear_response(c, dp);
