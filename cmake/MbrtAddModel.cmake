@@ -27,7 +27,44 @@
 # each. A model's flags must be the header's: LCM models (-fno-strict-aliasing)
 # and, where generated warnings are not errors anyway, WARNINGS models compile
 # without it. Without a call nothing changes.
+#
+# mbrt_add_model_bundle(<target> [BATCH_SIZE <n>])
+#
+# Optional, for a directory of many models (a test suite): adds <target>, one
+# static library into which the models mbrt_add_model adds afterwards in the
+# same directory compile, n to a translation unit (CMake's unity build,
+# default 16). GCC instantiates the Eigen templates of the runtime headers
+# again in every translation unit, and models of one mechanism in several
+# schemes share most of theirs: a batch compiles them once (about half the
+# CPU time of compiling models one by one, more for variants of one model,
+# so add those one after another). Each model keeps its target, then an
+# interface library (its include directory and the bundle), so programs link
+# it as before. LCM models, WARNINGS models whose warnings are not errors and
+# models added in other directories compile on their own, C interfaces
+# (<name>_c.cpp) one by one.
 include(${CMAKE_CURRENT_LIST_DIR}/MbrtWarnings.cmake)
+
+function(mbrt_add_model_bundle target)
+  cmake_parse_arguments(ARG "" "BATCH_SIZE" "" ${ARGN})
+  if(NOT ARG_BATCH_SIZE)
+    set(ARG_BATCH_SIZE 16)
+  endif()
+  set(source "${CMAKE_CURRENT_BINARY_DIR}/mbrt_models/${target}.cpp")
+  if(NOT EXISTS "${source}")
+    file(WRITE "${source}" "// The bundle of generated models (mbrt_add_model_bundle).\n")
+  endif()
+  add_library(${target} STATIC "${source}")
+  target_link_libraries(${target} PUBLIC mbrt::mbrt)
+  target_compile_features(${target} PUBLIC cxx_std_17)
+  if(MBRT_GENERATED_WARNINGS_ARE_ERRORS)
+    mbrt_enable_warnings(${target})
+  endif()
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${ARG_BATCH_SIZE})
+  if(MBRT_MODEL_PCH)
+    target_precompile_headers(${target} REUSE_FROM ${MBRT_MODEL_PCH})
+  endif()
+  set(MBRT_MODEL_BUNDLE ${target} PARENT_SCOPE)
+endfunction()
 
 function(mbrt_add_model_pch target)
   set(source "${CMAKE_CURRENT_BINARY_DIR}/mbrt_models/${target}.cpp")
@@ -104,6 +141,22 @@ function(mbrt_add_model target)
   set(sources ${outputs})
   if(DEFINED MBRT_MODEL_C_INTERFACE AND NOT MBRT_MODEL_C_INTERFACE AND NOT ARG_C_INTERFACE)
     list(REMOVE_ITEM sources "${dir}/${name}_c.cpp")
+  endif()
+  set(bundle "")
+  if(MBRT_MODEL_BUNDLE AND NOT ARG_LCM AND (MBRT_GENERATED_WARNINGS_ARE_ERRORS OR NOT ARG_WARNINGS))
+    get_target_property(bundle_dir ${MBRT_MODEL_BUNDLE} SOURCE_DIR)
+    if(bundle_dir STREQUAL CMAKE_CURRENT_SOURCE_DIR)
+      set(bundle ${MBRT_MODEL_BUNDLE})
+    endif()
+  endif()
+  if(bundle)
+    target_sources(${bundle} PRIVATE ${sources})
+    # The C interface's file-scope helpers (Work, copy, ...) are per model.
+    set_source_files_properties("${dir}/${name}_c.cpp" PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
+    add_library(${target} INTERFACE)
+    target_include_directories(${target} INTERFACE "${dir}")
+    target_link_libraries(${target} INTERFACE ${bundle})
+    return()
   endif()
   add_library(${target} STATIC ${sources})
   target_include_directories(${target} PUBLIC "${dir}")
