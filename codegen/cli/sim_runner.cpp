@@ -76,21 +76,24 @@ std::vector<std::string> split(const std::string& list) {
   return out;
 }
 
-// The sources compiled with the generated model, and whether the program
-// speaks LCM (then lcm-gen runs on the model's types first).
+// What a program is built from: the rt/ library's sources (compiled once
+// into the cache and shared by every program of every model), the sources
+// compiled with the generated model, and whether the program speaks LCM
+// (then lcm-gen runs on the model's types first).
 struct ProgramPlan {
   const char* executable;
+  std::vector<fs::path> runtime;
   std::vector<fs::path> sources;
   bool lcm;
 };
 
 ProgramPlan plan(Program program) {
   const Sources src = sources();
-  if (program == Program::sim) return {"sim", {src.sim_driver}, false};
-  std::vector<fs::path> files;
-  for (const std::string& f : split(toolchain::kRtSources)) files.push_back(src.rt / f);
-  files.push_back(program == Program::hil ? src.rt / "hil_driver.cpp" : src.stub);
-  return {program == Program::hil ? "hil" : "pd_controller", files, true};
+  if (program == Program::sim) return {"sim", {}, {src.sim_driver}, false};
+  std::vector<fs::path> runtime;
+  for (const std::string& f : split(toolchain::kRtSources)) runtime.push_back(src.rt / f);
+  return {program == Program::hil ? "hil" : "pd_controller", runtime,
+          {program == Program::hil ? src.rt / "hil_driver.cpp" : src.stub}, true};
 }
 
 std::string compile_flags(const ProgramPlan& p) {
@@ -104,22 +107,40 @@ std::string compile_flags(const ProgramPlan& p) {
   return flags;
 }
 
-// Everything the executable depends on: generated code, program sources,
-// runtime headers and the compile command.
-std::string content_key(const GeneratedCode& code, const ProgramPlan& p) {
-  std::uint64_t h = fnv1a(code.header);
-  h = fnv1a(code.source, h);
-  for (const GeneratedFile& f : code.interface_files) h = fnv1a(f.name + f.text, h);
-  for (const fs::path& f : p.sources) h = fnv1a(f.string() + read_file(f), h);
-  h = fnv1a(std::string(toolchain::kCompiler) + compile_flags(p) + (p.lcm ? toolchain::kLcmLibrary : ""), h);
+// Compiler, flags and the runtime headers: what every object depends on
+// besides its own source.
+std::uint64_t toolchain_key(const ProgramPlan& p) {
+  std::uint64_t h = fnv1a(std::string(toolchain::kCompiler) + compile_flags(p));
   for (const fs::path& dir : sources().includes) {
     for (const auto& e : fs::recursive_directory_iterator(dir / "mbrt")) {
       if (e.is_regular_file()) h = fnv1a(e.path().filename().string() + read_file(e.path()), h);
     }
   }
+  return h;
+}
+
+std::string hex(std::uint64_t h) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
+}
+
+// Everything the executable depends on: generated code, program sources,
+// runtime headers, the compile command and LCM's library.
+std::string content_key(const GeneratedCode& code, const ProgramPlan& p) {
+  std::uint64_t h = fnv1a(code.header, toolchain_key(p));
+  h = fnv1a(code.source, h);
+  for (const GeneratedFile& f : code.interface_files) h = fnv1a(f.name + f.text, h);
+  for (const fs::path& f : p.runtime) h = fnv1a(f.string() + read_file(f), h);
+  for (const fs::path& f : p.sources) h = fnv1a(f.string() + read_file(f), h);
+  if (p.lcm) h = fnv1a(toolchain::kLcmLibrary, h);
+  return hex(h);
+}
+
+std::string include_flags() {
+  std::string flags;
+  for (const fs::path& inc : sources().includes) flags += " -I" + shell_quote(inc.string());
+  return flags + " -I" + shell_quote(toolchain::kEigenInclude);
 }
 
 void run_or_throw(const std::string& cmd, const std::string& what, const fs::path& log, bool verbose) {
@@ -127,6 +148,32 @@ void run_or_throw(const std::string& cmd, const std::string& what, const fs::pat
   if (std::system((cmd + " 2> " + shell_quote(log.string())).c_str()) != 0) {
     throw std::runtime_error(what + " failed; see " + log.string());
   }
+}
+
+// The rt/ library's objects, each compiled once per compiler, flags, source
+// and runtime headers into <cache>/rt and linked into every program after:
+// they take most of a HIL program's compile (command-line options and JSON
+// reports: 30 s of CPU of about 40), and do not depend on the model.
+std::vector<fs::path> runtime_objects(const ProgramPlan& p, const SimOptions& options) {
+  const fs::path dir = cache_root(options) / "rt";
+  const std::uint64_t base = toolchain_key(p);
+  std::vector<fs::path> objects;
+  for (const fs::path& f : p.runtime) {
+    const fs::path object = dir / (f.stem().string() + "-" + hex(fnv1a(read_file(f), base)) + ".o");
+    if (!fs::exists(object)) {
+      fs::create_directories(dir);
+      if (!options.verbose) std::fprintf(stderr, "compiling %s (cached in %s)\n", f.filename().c_str(), dir.c_str());
+      // A private name, then rename: concurrent builds never link a half-written object.
+      const std::string tmp = object.string() + ".tmp" + std::to_string(::getpid());
+      run_or_throw(std::string(toolchain::kCompiler) + " " + compile_flags(p) + include_flags() + " -c " +
+                       shell_quote(f.string()) + " -o " + shell_quote(tmp),
+                   "compiling " + f.string(), tmp + ".log", options.verbose);
+      fs::rename(tmp, object);
+      fs::remove(tmp + ".log");
+    }
+    objects.push_back(object);
+  }
+  return objects;
 }
 
 }  // namespace
@@ -145,9 +192,9 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
   const fs::path tmp = dir.string() + ".tmp" + std::to_string(::getpid());
   fs::create_directories(tmp);
   write_generated(g.code, tmp.string());
+  const std::vector<fs::path> objects = runtime_objects(p, options);
   std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags(p) + " -I" + shell_quote(tmp.string());
-  for (const fs::path& inc : sources().includes) cmd += " -I" + shell_quote(inc.string());
-  cmd += " -I" + shell_quote(toolchain::kEigenInclude) + " -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name;
+  cmd += include_flags() + " -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name;
   if (!g.model.tunable.empty()) cmd += " -DMBRT_MODEL_PARAMETERS";  // --set KEY=VALUE (docs/parameters.md)
   if (p.lcm) {
     run_or_throw(std::string(toolchain::kLcmGen) + " -x --cpp-hpath " + shell_quote(tmp.string()) + " " +
@@ -160,6 +207,7 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
   }
   cmd += " " + shell_quote((tmp / g.code.source_name).string());
   for (const fs::path& f : p.sources) cmd += " " + shell_quote(f.string());
+  for (const fs::path& o : objects) cmd += " " + shell_quote(o.string());
   cmd += " -o " + shell_quote((tmp / p.executable).string());
   if (p.lcm) cmd += std::string(" ") + toolchain::kLcmLibrary;
   if (!options.verbose) std::fprintf(stderr, "compiling %s %s (cached in %s)\n", g.model.name.c_str(), p.executable, dir.string().c_str());

@@ -131,11 +131,7 @@ StepStatus rk4_projected_step(typename M::State& s, typename M::Workspace& w) no
   M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);
 
   // Unilateral contacts and their friction (docs/contact.md).
-  if constexpr (jointed_contacts<M>()) {
-    positive = contact_step_with_joints<M>(s, w) && positive;
-  } else {
-    contact_step<M>(w.last_good, s);
-  }
+  positive = contacts_after_smooth_step<M>(s, w) && positive;
   if (!finite(s)) {
     s = w.last_good;
     return StepStatus::non_finite;

@@ -148,9 +148,16 @@ void correct_velocities(const typename M::ConstraintSystem& c, typename M::State
 template <class M>
 bool contact_step_with_joints(typename M::State& s, typename M::Workspace& w) noexcept {
   using BodyVectors = typename M::BodyVectors;
-  M::kinematics(s, w.k);
-  M::constraint_rows(w.k, s, w.c);
-  bool positive = factorize_system<M>(s, w.c);
+  // rk4-projected and baumgarte end their smooth step with S factorized at
+  // its final positions (only velocities change after); staggered-pcst's
+  // position stage and blajer's corrections move them after their factorization.
+  constexpr bool factor_current = M::kScheme == Scheme::rk4_projected || M::kScheme == Scheme::baumgarte;
+  bool positive = true;
+  if constexpr (!factor_current) {
+    M::kinematics(s, w.k);
+    M::constraint_rows(w.k, s, w.c);
+    positive = factorize_system<M>(s, w.c);
+  }
   const typename M::Rows joint_forces = contact_step<M>(w.last_good, s, &w.c);
   M::kinematics(s, w.k);
   M::constraint_rows(w.k, s, w.c);
@@ -171,6 +178,18 @@ bool contact_step_with_joints(typename M::State& s, typename M::Workspace& w) no
   M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);
   s.lambda += joint_forces;
   return positive;
+}
+
+// The contacts after a scheme's smooth step: with the joints' share where a
+// contact's body is in a joint. Returns whether S was positive definite.
+template <class M>
+bool contacts_after_smooth_step(typename M::State& s, typename M::Workspace& w) noexcept {
+  if constexpr (jointed_contacts<M>()) {
+    return contact_step_with_joints<M>(s, w);
+  } else {
+    contact_step<M>(w.last_good, s);
+    return true;
+  }
 }
 
 // staggered-nps factorizes the tree and the cut rows where the others factorize S;
@@ -289,11 +308,7 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
   }
 
   // Unilateral contacts and their friction (docs/contact.md).
-  if constexpr (jointed_contacts<M>()) {
-    positive = contact_step_with_joints<M>(s, w) && positive;
-  } else {
-    contact_step<M>(w.last_good, s);
-  }
+  positive = contacts_after_smooth_step<M>(s, w) && positive;
   if (!finite(s)) {
     s = w.last_good;
     return StepStatus::non_finite;
