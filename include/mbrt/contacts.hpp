@@ -337,7 +337,7 @@ typename M::Rows contact_step(typename M::State& start, typename M::State& s,
     return resolve_contacts<M>(s, contact_detail::Joints<M>{c}, start_normal_velocity);
   } else {
     (void)start, (void)s, (void)c;
-    return typename M::Rows();
+    return M::Rows::Zero();
   }
 }
 
