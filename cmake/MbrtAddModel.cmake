@@ -44,14 +44,12 @@
 # (<name>_c.cpp) one by one.
 include(${CMAKE_CURRENT_LIST_DIR}/MbrtWarnings.cmake)
 
-function(mbrt_add_model_bundle target)
-  cmake_parse_arguments(ARG "" "BATCH_SIZE" "" ${ARGN})
-  if(NOT ARG_BATCH_SIZE)
-    set(ARG_BATCH_SIZE 16)
-  endif()
+# A static library of generated code's flags with one placeholder source:
+# the bundle and the precompiled header's target start as one.
+function(_mbrt_models_library target role)
   set(source "${CMAKE_CURRENT_BINARY_DIR}/mbrt_models/${target}.cpp")
   if(NOT EXISTS "${source}")
-    file(WRITE "${source}" "// The bundle of generated models (mbrt_add_model_bundle).\n")
+    file(WRITE "${source}" "// The ${role} of the generated models.\n")
   endif()
   add_library(${target} STATIC "${source}")
   target_link_libraries(${target} PUBLIC mbrt::mbrt)
@@ -59,6 +57,14 @@ function(mbrt_add_model_bundle target)
   if(MBRT_GENERATED_WARNINGS_ARE_ERRORS)
     mbrt_enable_warnings(${target})
   endif()
+endfunction()
+
+function(mbrt_add_model_bundle target)
+  cmake_parse_arguments(ARG "" "BATCH_SIZE" "" ${ARGN})
+  if(NOT ARG_BATCH_SIZE)
+    set(ARG_BATCH_SIZE 16)
+  endif()
+  _mbrt_models_library(${target} bundle)
   set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${ARG_BATCH_SIZE})
   if(MBRT_MODEL_PCH)
     target_precompile_headers(${target} REUSE_FROM ${MBRT_MODEL_PCH})
@@ -67,16 +73,7 @@ function(mbrt_add_model_bundle target)
 endfunction()
 
 function(mbrt_add_model_pch target)
-  set(source "${CMAKE_CURRENT_BINARY_DIR}/mbrt_models/${target}.cpp")
-  if(NOT EXISTS "${source}")
-    file(WRITE "${source}" "// The precompiled header of the generated models (mbrt_add_model_pch).\n")
-  endif()
-  add_library(${target} STATIC "${source}")
-  target_link_libraries(${target} PUBLIC mbrt::mbrt)
-  target_compile_features(${target} PUBLIC cxx_std_17)
-  if(MBRT_GENERATED_WARNINGS_ARE_ERRORS)
-    mbrt_enable_warnings(${target})
-  endif()
+  _mbrt_models_library(${target} "precompiled header")
   target_precompile_headers(${target} PRIVATE
     <algorithm> <array> <cmath> <cstddef>
     <mbrt/model_api.hpp> <mbrt/runtime.hpp> <mbrt/reactions.hpp> <mbrt/sin_cos.hpp>
