@@ -78,7 +78,7 @@ function(mbrt_add_model_pch target)
     <algorithm> <array> <cmath> <cstddef>
     <mbrt/model_api.hpp> <mbrt/runtime.hpp> <mbrt/reactions.hpp> <mbrt/sin_cos.hpp>
     <mbrt/natural_partitioning.hpp> <mbrt/schemes/staggered.hpp> <mbrt/schemes/tree.hpp>
-    <mbrt/schemes/ali3p.hpp> <mbrt/schemes/rk4_projected.hpp>)
+    <mbrt/schemes/ali3p.hpp> <mbrt/schemes/rk4_projected.hpp> <mbrt/schemes/staggered4.hpp>)
   set(MBRT_MODEL_PCH ${target} PARENT_SCOPE)
 endfunction()
 

@@ -17,50 +17,7 @@
 #include "heavy_top_rk4p_1.hpp"
 #include "heavy_top_rk4p_2.hpp"
 #include "heavy_top_rk4p_4.hpp"
-#include "reference_solutions.hpp"
-
-namespace {
-
-// Largest error of the top's centre-of-mass height against the closed form
-// at the tabulated times up to 1 s.
-#define HEAVY_TOP_HEIGHT_ERROR(model)                                                       \
-  [] {                                                                                      \
-    namespace m = mbrt::models::model;                                                      \
-    m::State s = m::initial_state();                                                        \
-    double worst = 0.0;                                                                     \
-    for (const reference::TimedValue& c : reference::kHeavyTopHeight) {                     \
-      if (c.t > 1.0) break;                                                                 \
-      while (s.t < c.t - 0.5 * m::kStep) REQUIRE(m::step(s) == mbrt::StepStatus::ok);       \
-      worst = std::max(worst, std::abs(s.rigid[m::rigid::top].r.z() - c.value));            \
-    }                                                                                       \
-    return worst;                                                                           \
-  }()
-
-// Largest distance of the bob from the reference every 0.5 s up to 2000 s.
-#define A01_ERROR(model, ref)                                                               \
-  [&] {                                                                                     \
-    namespace m = mbrt::models::model;                                                      \
-    m::State s = m::initial_state();                                                        \
-    const long per_sample = std::lround(0.5 / m::kStep);                                    \
-    double worst = 0.0;                                                                     \
-    for (std::size_t k = 1; k < (ref).size(); ++k) {                                        \
-      for (long i = 0; i < per_sample; ++i) REQUIRE(m::step(s) == mbrt::StepStatus::ok);    \
-      const mbrt::Vec3& r = s.particle[m::particle::bob].r;                                 \
-      worst = std::max(worst, std::hypot(r.x() - (ref)[k].x(), r.y() - (ref)[k].y()));      \
-    }                                                                                       \
-    return worst;                                                                           \
-  }()
-
-#define ARM_TIP_ERROR(model)                                                                \
-  [] {                                                                                      \
-    namespace m = mbrt::models::model;                                                      \
-    m::State s = m::initial_state();                                                        \
-    const long steps = std::lround(0.5 / m::kStep);                                         \
-    for (long k = 0; k < steps; ++k) REQUIRE(m::step(s) == mbrt::StepStatus::ok);          \
-    return (s.rigid[m::rigid::link_6].r - reference::kArmTipAtHalfSecond).norm();           \
-  }()
-
-}  // namespace
+#include "reference_errors.hpp"
 
 // Measured: 4.9e-6, 3.3e-7 and 2.2e-8 m at h = 1e-3, 5e-4 and 2.5e-4 (the
 // top spins at 150 rad/s; staggered-pcst is at 4.7e-4 m at 4e-4).

@@ -18,6 +18,7 @@
 #include "arm_7_midpoint.hpp"
 #include "arm_7_rk4.hpp"
 #include "arm_7_rk4p.hpp"
+#include "arm_7_s4.hpp"
 #include "arm_7_spinning_tool.hpp"
 #include "arm_7_tree.hpp"
 #include "arm_7_tree_fine.hpp"
@@ -30,9 +31,11 @@
 #include "spatial_chain_16_revolute_rk4.hpp"
 #include "spatial_chain_16_revolute_tree.hpp"
 #include "spatial_chain_16_rk4p.hpp"
+#include "spatial_chain_16_s4.hpp"
 #include "spinner.hpp"
 #include "spinner_2ms.hpp"
 #include "spinner_rk4p.hpp"
+#include "spinner_s4.hpp"
 
 namespace {
 
@@ -155,6 +158,17 @@ TEST_CASE("rk4-projected keeps the arm, the spherical chain and the spinner with
                        STRESS_RUN(spinner_rk4p, "spinner.yaml", 10.0)}) {
     CHECK(r.finite);
     CHECK(r.drift < 1e-2);
+  }
+}
+
+// staggered4 (three staggered-pcst substeps, the middle one 1.70 h
+// backwards): measured over 10 s at 1e-3 s, arm_7 0.031 %, the spherical
+// chain 0.0023 %, the spinner (0.3 rad per step) 0.0016 %.
+TEST_CASE("staggered4 keeps the arm, the spherical chain and the spinner within 0.1 % of their energy at 1 kHz") {
+  for (const Run& r : {STRESS_RUN(arm_7_s4, "arm_7.yaml", 10.0), STRESS_RUN(spatial_chain_16_s4, "spatial_chain_16.yaml", 10.0),
+                       STRESS_RUN(spinner_s4, "spinner.yaml", 10.0)}) {
+    CHECK(r.finite);
+    CHECK(r.drift < 1e-3);
   }
 }
 

@@ -29,6 +29,7 @@
 #include "four_bar_general.hpp"
 #include "four_bar_nps.hpp"
 #include "four_bar_rk4p.hpp"
+#include "four_bar_s4.hpp"
 #include "heavy_top.hpp"
 #include "two_masses_special.hpp"
 
@@ -72,6 +73,7 @@ TEST_CASE("step() allocates nothing over 1e5 steps") {
   CHECK_NO_ALLOCATION(arm_7_rk4, 100000);           // rk4-tree
   CHECK_NO_ALLOCATION(four_bar_rk4p, 100000);       // rk4-projected, redundant rows
   CHECK_NO_ALLOCATION(actuated_rk4p, 100000);       // rk4-projected with inputs
+  CHECK_NO_ALLOCATION(four_bar_s4, 100000);         // staggered4, redundant rows
 }
 
 // A workspace is scratch memory: a step must give the same state whatever
@@ -112,6 +114,7 @@ TEST_CASE("the caller's workspace carries nothing from one step to the next") {
   CHECK_WORKSPACE_IS_SCRATCH(arm_7_midpoint);
   CHECK_WORKSPACE_IS_SCRATCH(arm_7_rk4);
   CHECK_WORKSPACE_IS_SCRATCH(four_bar_rk4p);
+  CHECK_WORKSPACE_IS_SCRATCH(four_bar_s4);
   CHECK_WORKSPACE_IS_SCRATCH(heavy_top);
   CHECK_WORKSPACE_IS_SCRATCH(four_bar);
   CHECK_WORKSPACE_IS_SCRATCH(four_bar_nps);

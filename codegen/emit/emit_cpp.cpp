@@ -182,8 +182,10 @@ void Emitter::constants(std::ostringstream& o) const {
   o << "constexpr double h = kStep;\n"
     << "constexpr double kRegularization = " << num(a_.regularization) << ";  // added to diag(S)\n";
   if (rattle()) position_stage_constants(o);
+  if (scheme_kind() == Scheme::staggered4) triple_jump_constants(o);
   switch (scheme_kind()) {
     case Scheme::staggered_pcst:
+    case Scheme::staggered4:
     case Scheme::staggered_nps:
       o << "constexpr double kStabilization = " << num(a_.stabilization) << ";  // alpha, 1/s\n";
       break;
@@ -290,6 +292,7 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
       << "  " << ns << "NewtonMatrix g;       // the position stage's Newton matrix\n";
   }
   if (scheme_kind() == Scheme::staggered_nps) o << "  " << ns << "TreeSystem t;\n";
+  if (scheme_kind() == Scheme::staggered4) o << "  State start;  // the state at t, restored when a substep fails\n";
   if (scheme_kind() == Scheme::rk4_projected) {
     o << "  State sum;  // the Runge-Kutta stages' weighted rates, in a state's fields\n"
       << "  std::array<mbrt::EulerParameters, kRigidBodies> p_stage;  // a stage's Euler parameters, not normalized\n";
@@ -302,7 +305,12 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
 void Emitter::model_members(std::ostringstream& o) const {
   const std::string ns = planar_ ? "detail::planar::" : "detail::";
   o << "// The model as the scheme's step (include/mbrt/schemes/) sees it: types,\n"
-    << "// constants and kernels.\nstruct Model {\n"
+    << "// constants and kernels.\n"
+    << (scheme_kind() == Scheme::staggered4 ? "// kSubstep: 0 for the first and last substep, 1 for the middle one.\n"
+                                               "template <int kSubstep>\nstruct ModelAt {\n"
+                                               "static constexpr double h = kSubsteps[kSubstep];  // the substep's length\n"
+                                               "static constexpr double kFullStep = mbrt::models::" + m_.name + "::kStep;\n"
+                                             : "struct Model {\n")
     << "using State = mbrt::models::" << m_.name << "::State;\n";
   if (emits_step()) o << "using Workspace = mbrt::models::" << m_.name << "::Workspace;\n";
   for (const char* t : {"Rows", "BodyVectors", "Kinematics", "Loads", "ConstraintSystem"}) {
@@ -323,12 +331,16 @@ void Emitter::model_members(std::ostringstream& o) const {
         << "static constexpr bool kRheonomic = " << (a_.rheonomic ? "true" : "false") << ";\n";
       break;
     case Scheme::staggered_pcst:
+    case Scheme::staggered4:
     case Scheme::staggered_nps:
     case Scheme::baumgarte:
     case Scheme::blajer:
       o << "static constexpr int kStages = " << stages() << ";  // implicit passes per step\n"
         << "static constexpr bool kPositionStage = " << (rattle() ? "true" : "false") << ";\n";
-      if (rattle()) o << "static constexpr int kPositionIterations = 2;  // Newton steps of the position stage\n";
+      if (rattle()) {
+        o << "static constexpr int kPositionIterations = " << position_iterations()
+          << ";  // Newton steps of the position stage\n";
+      }
       if (scheme_kind() == Scheme::blajer) {
         o << "static constexpr int kCorrections = " << m_.solver.corrections << ";  // position corrections per step\n";
       }
@@ -911,12 +923,14 @@ void Emitter::kinematics_function(std::ostringstream& o) const {
 
 std::string Emitter::step_function() const {
   if (scheme_kind() == Scheme::ali3p) return "ali3p_step";
+  if (scheme_kind() == Scheme::staggered4) return "staggered4_step";
   if (scheme_kind() == Scheme::rk4_projected) return "rk4_projected_step";
   return tree_scheme() ? tree_step_name() : "staggered_step";
 }
 
 std::string Emitter::step_header() const {
   if (scheme_kind() == Scheme::ali3p) return "ali3p.hpp";
+  if (scheme_kind() == Scheme::staggered4) return "staggered4.hpp";
   if (scheme_kind() == Scheme::rk4_projected) return "rk4_projected.hpp";
   return tree_scheme() ? "tree.hpp" : "staggered.hpp";
 }
@@ -941,6 +955,7 @@ std::string Emitter::source() const {
   model_members(o);
   kernels(o);
   o << "};\n\n";
+  if (scheme_kind() == Scheme::staggered4) o << "using Model = ModelAt<0>;  // the kernels that serve the tools\n\n";
   if (a_.planar.applies) planar_stages(o);
   o << "}  // namespace\n\n";
   public_functions(o);
@@ -981,7 +996,7 @@ void Emitter::public_functions(std::ostringstream& o) const {
                     "State initial_state(const Parameters& p) noexcept { return Model::initial_state(p); }\n\n"
                   : "State initial_state() noexcept { return Model::initial_state(); }\n\n")
     << "mbrt::StepStatus step(State& s, Workspace& w) noexcept {\n  return mbrt::schemes::"
-    << step_function() << "<" << stepper << ">(s, w);\n}\n\n"
+    << step_function() << "<" << (scheme_kind() == Scheme::staggered4 ? "ModelAt<0>, ModelAt<1>" : stepper) << ">(s, w);\n}\n\n"
     << (tree_scheme() ? "void set_multipliers(State& s) noexcept { Model::set_multipliers(s); }\n\n" : "")
     << "mbrt::StepStatus step(State& s) noexcept {\n  Workspace w;\n  return step(s, w);\n}\n\n"
     << "mbrt::Energy energy(const State& s) noexcept { return Model::energy(s); }\n\n"

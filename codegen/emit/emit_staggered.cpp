@@ -1,6 +1,8 @@
 // Step emission for the schemes built on the staggered explicit stage:
-// staggered-pcst (docs/staggered-pcst.md), baumgarte and blajer
+// staggered-pcst (docs/staggered-pcst.md), staggered4, baumgarte and blajer
 // (docs/schemes.md).
+#include <cmath>
+
 #include "emitter.hpp"
 
 namespace mbrt::codegen {
@@ -8,6 +10,7 @@ namespace mbrt::codegen {
 std::string Emitter::stabilization_term() const {
   switch (scheme_kind()) {
     case Scheme::staggered_pcst:
+    case Scheme::staggered4:
     case Scheme::staggered_nps:
       return "(2.0 / h) * (velocity_residual(c, generalized_velocities(s)) + kStabilization * phi)";
     case Scheme::baumgarte:
@@ -67,6 +70,7 @@ void Emitter::staggered_stages(std::ostringstream& o) const {
   }
   switch (scheme_kind()) {
     case Scheme::staggered_pcst:
+    case Scheme::staggered4:
       o << R"(// (c, l, phi, s) => (s.lambda, accelerations): multipliers of the stabilized
 // companion equation (docs/staggered-pcst.md eq. 7)
 //   (S + 2 eps/h I) lambda = B M^-1 F + quad + (2/h) (B u + alpha phi)
@@ -125,6 +129,17 @@ static void correct_positions(const ConstraintSystem& c, State& s) noexcept {
 void Emitter::position_stage_constants(std::ostringstream& o) const {
   o << "constexpr double kNewtonShift = " << num(a_.newton_shift) << ";  // added to diag(G)"
     << (a_.redundant_rows > 0 ? " (" + std::to_string(a_.redundant_rows) + " redundant rows)" : "") << "\n";
+}
+
+// Yoshida's triple jump (Yoshida 1990, "Construction of higher order
+// symplectic integrators", Phys. Lett. A 150; Hairer, Lubich & Wanner 2006,
+// "Geometric Numerical Integration", section II.4): substeps g1 h, g0 h, g1 h
+// with g1 = 1 / (2 - 2^(1/3)), g0 = 1 - 2 g1 = -2^(1/3) g1.
+void Emitter::triple_jump_constants(std::ostringstream& o) const {
+  const double g1 = 1.0 / (2.0 - std::cbrt(2.0));
+  const double g0 = -std::cbrt(2.0) * g1;
+  o << "// Substeps of Yoshida's triple jump: kSubsteps[0], [1], [0] (docs/schemes.md, \"staggered4\").\n"
+    << "constexpr double kSubsteps[2] = {" << num(g1 * m_.solver.step) << ", " << num(g0 * m_.solver.step) << "};\n";
 }
 
 }  // namespace mbrt::codegen

@@ -330,7 +330,7 @@ void check_parameters(const Model& model, const std::vector<Parameter>& params) 
 StepPlan plan_step(const Model& model, const Analysis& a, const std::vector<Parameter>& params) {
   StepPlan p;
   p.scheme = model.solver.scheme;
-  const bool pcst = p.scheme == mbrt::Scheme::staggered_pcst;
+  const bool pcst = mbrt::pcst_steps(p.scheme);
   const bool baumgarte = p.scheme == mbrt::Scheme::baumgarte && a.constraint_rows > 0;
   p.stages = a.velocity_dependent_forces || baumgarte || !a.specialize.single_stage ? 2 : 1;
   p.position_stage = pcst && !a.constraints.empty();
@@ -402,6 +402,13 @@ std::vector<ContactPlan> contact_plans(const Model& model, const Analysis& a) {
                        "contacts need a scheme in absolute coordinates, e.g. staggered-pcst (the scheme is " +
                            std::string(mbrt::scheme_name(model.solver.scheme)) + ", whose bodies all hang from joints)");
     }
+    // Its middle substep runs backwards in time, where an impact would
+    // have to be undone: dissipation is not reversible.
+    if (model.solver.scheme == mbrt::Scheme::staggered4) {
+      throw ModelError(c.where, key,
+                       "contacts need a scheme that steps forward in time, e.g. staggered-pcst (staggered4's middle "
+                       "substep runs backwards; docs/schemes.md)");
+    }
     const ConstraintBlock* block = first_block[static_cast<size_t>(c.body)];
     const bool in_joint = block != nullptr;
     // Their impulses need S = B M^-1 B^T factorized at the step's end, which
@@ -444,7 +451,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
       plan.isotropic = specialize.isotropic && d.x() == d.y() && d.y() == d.z() && off.cwiseAbs().maxCoeff() == 0.0;
       // staggered-pcst carries the gyroscopic torque in the free rotation of
       // its drift; the other schemes apply it as a load.
-      if (!plan.isotropic && model.solver.scheme != mbrt::Scheme::staggered_pcst) a.velocity_dependent_forces = plan.loaded = true;
+      if (!plan.isotropic && !mbrt::pcst_steps(model.solver.scheme)) a.velocity_dependent_forces = plan.loaded = true;
     }
     a.bodies.push_back(plan);
   }
@@ -483,7 +490,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   // A tunable inertia may lose its isotropy: its gyroscopic torque is a load
   // where the scheme applies it so (as for any non-isotropic body above).
   for (BodyPlan& b : a.bodies) {
-    if (b.tunable_inertia && model.solver.scheme != mbrt::Scheme::staggered_pcst) a.velocity_dependent_forces = b.loaded = true;
+    if (b.tunable_inertia && !mbrt::pcst_steps(model.solver.scheme)) a.velocity_dependent_forces = b.loaded = true;
   }
   for (size_t i = 0; i < model.forces.size(); ++i) {
     const Force& f = model.forces[i];
@@ -565,7 +572,11 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     // redundant rows, its left and right null spaces differ and a shift as small
     // as S's lets the unreachable part of phi grow. 1e-2 of S's diagonal keeps
     // it bounded (measured on the four-bar and Bricard's mechanism; docs/stability.md).
-    a.newton_shift = a.redundant_rows > 0 ? 1e-2 * s_diagonal.maxCoeff() : a.regularization;
+    // staggered4's six Newton steps need no more than S's shift: with 1e-2 of
+    // the diagonal they stall (the four-bar's abs(Phi) at 5e-6, its energy
+    // drifting 1.3e-3 J/s); with S's, abs(Phi) stays at 2e-15 over 1000 s.
+    const bool small_shift = a.redundant_rows == 0 || model.solver.scheme == mbrt::Scheme::staggered4;
+    a.newton_shift = small_shift ? a.regularization : 1e-2 * s_diagonal.maxCoeff();
   }
   if (model.solver.scheme == mbrt::Scheme::ali3p) a.ali3p = ali3p_plan(model, a.constraints, s_diagonal);
   if (model.solver.scheme == mbrt::Scheme::staggered_nps) a.tree = plan_tree(model, a.constraints);

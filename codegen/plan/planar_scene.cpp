@@ -187,6 +187,7 @@ PlanarPlan plan_planar(const Model& model, const Analysis& a) {
     case mbrt::Scheme::midpoint_tree:
     case mbrt::Scheme::rk4_tree:
     case mbrt::Scheme::rk4_projected:
+    case mbrt::Scheme::staggered4:
     case mbrt::Scheme::ali3p:
       plan.refusal = "not for scheme " + std::string(mbrt::scheme_name(model.solver.scheme));
       return plan;

@@ -17,12 +17,13 @@ enum class Scheme {
   midpoint_tree,   // docs/staggered-tree.md, "midpoint-tree"
   rk4_tree,        // docs/staggered-tree.md, "rk4-tree"
   rk4_projected,   // docs/schemes.md, "rk4-projected"
+  staggered4,      // docs/schemes.md, "staggered4"
 };
 
 // The names the model file and the command line use, one per Scheme in order.
-inline constexpr std::array<std::string_view, 9> kSchemeNames{
-    "staggered-pcst", "staggered-nps", "ali3p",         "blajer",         "baumgarte",
-    "staggered-tree", "midpoint-tree", "rk4-tree",      "rk4-projected"};
+inline constexpr std::array<std::string_view, 10> kSchemeNames{
+    "staggered-pcst", "staggered-nps", "ali3p",    "blajer",        "baumgarte",
+    "staggered-tree", "midpoint-tree", "rk4-tree", "rk4-projected", "staggered4"};
 
 inline constexpr std::string_view scheme_name(Scheme s) noexcept { return kSchemeNames[static_cast<int>(s)]; }
 
@@ -30,6 +31,10 @@ inline constexpr std::string_view scheme_name(Scheme s) noexcept { return kSchem
 inline constexpr bool joint_space(Scheme s) noexcept {
   return s == Scheme::staggered_tree || s == Scheme::midpoint_tree || s == Scheme::rk4_tree;
 }
+
+// The schemes whose steps are staggered-pcst's (staggered4 composes three of
+// them into one step, include/mbrt/schemes/staggered4.hpp).
+inline constexpr bool pcst_steps(Scheme s) noexcept { return s == Scheme::staggered_pcst || s == Scheme::staggered4; }
 
 inline std::optional<Scheme> scheme_from_name(std::string_view name) noexcept {
   for (std::size_t i = 0; i < kSchemeNames.size(); ++i) {
