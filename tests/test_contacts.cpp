@@ -524,6 +524,8 @@ TEST_CASE("contact keys: errors name the file, line and key") {
   }
   check(ball_with("", "solver: {scheme: rk4-tree}\n"), "7", "joints.tyre",
         "contacts need a scheme in absolute coordinates");
+  check(ball_with("", "solver: {scheme: staggered4}\n"), "7", "joints.tyre",
+        "contacts need a scheme that steps forward in time, e.g. staggered-pcst (staggered4's middle substep runs backwards");
   check(ball_with("", "tunable: [ball.mass]\n"), "7", "joints.tyre.body", "has a tunable mass or inertia");
   // Outputs name a contact.
   check(ball_with("", "outputs:\n  - {name: f, type: contact_force, contact: wheel}\n"), "9", "outputs[0].contact",
