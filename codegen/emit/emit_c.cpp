@@ -52,8 +52,8 @@ std::vector<GeneratedFile> Emitter::c_interface() const {
     << "#define " << N << "_CONSTRAINT_BLOCKS " << blocks() << " /* joints, then drivers */\n"
     << "#define " << N << "_CONSTRAINT_ROWS " << a_.constraint_rows << "\n";
   if (tree_scheme()) h << "#define " << N << "_DOFS " << tree_dofs() << " /* joint coordinates, in body order */\n";
-  if (tree_scheme() && !friction_frames().empty()) {
-    h << "#define " << N << "_FRICTION_JOINTS " << friction_frames().size() << " /* joints with friction, docs/friction.md */\n";
+  if (!friction_joints().empty()) {
+    h << "#define " << N << "_FRICTION_JOINTS " << friction_joints().size() << " /* joints with friction, docs/friction.md */\n";
   }
   if (has_contacts()) h << "#define " << N << "_CONTACTS " << a_.contacts.size() << " /* docs/contact.md */\n";
   if (has_inputs()) h << "#define " << N << "_INPUTS " << m_.inputs.size() << "\n";

@@ -98,8 +98,13 @@ void Emitter::contact_members(std::ostringstream& o) const {
       o << "      {&" << st << ".r, nullptr, &" << st << ".v, nullptr},\n";
     }
   }
-  o << "  }};\n}\n"
-    << "// (dq, s) => (s): positions moved by dq = [dr; body-axes rotation vector] per body.\n"
+  o << "  }};\n}\n";
+  displace_function(o);
+  if (jointed) mechanism_kernels(o);
+}
+
+void Emitter::displace_function(std::ostringstream& o) const {
+  o << "// (dq, s) => (s): positions moved by dq = [dr; body-axes rotation vector] per body.\n"
     << "static void displace(const BodyVectors& dq, State& s) noexcept {\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const std::string st = state_of(static_cast<int>(i));
@@ -110,7 +115,6 @@ void Emitter::contact_members(std::ostringstream& o) const {
     }
   }
   o << "}\n";
-  if (jointed) mechanism_kernels(o);
 }
 
 // B u, S^-1 x and u -= scale M^-1 B^T lambda over one contact mechanism's

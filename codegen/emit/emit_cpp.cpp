@@ -50,6 +50,7 @@ std::string Emitter::header() const {
   if (has_inputs()) input_declarations(o);
   if (has_outputs()) output_declarations(o);
   if (tree_scheme()) tree_types(o);
+  else if (!friction_joints().empty()) friction_declarations(o);
   if (a_.tunable) parameter_declarations(o);
   o << "// Everything that changes from step to step; the caller owns it.\n"
     << "struct State {\n";
@@ -85,6 +86,21 @@ std::string Emitter::header() const {
   return o.str();
 }
 
+// Joint friction's State fields (docs/friction.md), `along`: the
+// coordinate its sign follows.
+void Emitter::friction_fields(std::vector<StateField>& f, const std::string& along) const {
+  const int friction = static_cast<int>(friction_joints().size());
+  if (friction == 0) return;
+  f.push_back({"  // Joint friction by friction:: index (docs/friction.md): the friction torque or\n"
+               "  // force of the last step (its impulse / h; N m or N, along " + along + "), and 1\n"
+               "  // where the joint stuck in it, 0 where it slipped.\n"
+               "  std::array<double, kFrictionJoints> friction{}, stuck{};\n"
+               "  static constexpr std::array<const char*, kFrictionJoints> friction_joints{{" + friction_joint_names() +
+               "}};  // their names\n",
+               "friction", "double", "FRICTION_JOINTS", "", friction});
+  f.push_back({"", "stuck", "double", "FRICTION_JOINTS", "", friction});
+}
+
 std::vector<StateField> Emitter::state_fields() const {
   const int nr = a_.rigid_count, np = a_.particle_count, rows = a_.constraint_rows;
   std::vector<StateField> f = {
@@ -104,17 +120,7 @@ std::vector<StateField> Emitter::state_fields() const {
                  "q", "double", "DOFS", "", tree_dofs()});
     f.push_back({"", "qd", "double", "DOFS", "", tree_dofs()});
     f.push_back({"", "qdd", "double", "DOFS", "", tree_dofs()});
-    const int friction = static_cast<int>(friction_frames().size());
-    if (friction > 0) {
-      f.push_back({"  // Joint friction by friction:: index (docs/friction.md): the friction torque or\n"
-                   "  // force of the last step (its impulse / h; N m or N, along +q), and 1 where\n"
-                   "  // the joint stuck in it, 0 where it slipped.\n"
-                   "  std::array<double, kFrictionJoints> friction{}, stuck{};\n"
-                   "  static constexpr std::array<const char*, kFrictionJoints> friction_joints{{" + friction_joint_names() +
-                   "}};  // their names\n",
-                   "friction", "double", "FRICTION_JOINTS", "", friction});
-      f.push_back({"", "stuck", "double", "FRICTION_JOINTS", "", friction});
-    }
+    friction_fields(f, "+q");
     acceleration_comment =
         "  // Body accelerations and constraint multipliers at the state, which\n"
         "  // step() does not need: set by initial_state() and set_multipliers().\n";
@@ -138,6 +144,7 @@ std::vector<StateField> Emitter::state_fields() const {
     f.push_back({"", "contact_stuck", "double", "CONTACTS", "", contacts});
     f.push_back({"", "contact_tangential", "double", "CONTACTS", "[3]", contacts});
   }
+  if (!tree_scheme()) friction_fields(f, "the joint coordinate");
   if (has_inputs()) {
     f.push_back({"  Inputs inputs;  // applied by step(); initial_state() sets the safe values\n", "inputs", "double",
                  "INPUTS", "", static_cast<int>(m_.inputs.size())});
@@ -277,7 +284,7 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
       << "  HalfAngles half_angles;  // of s.q\n"
       << "  Dofs rates;              // the rates the recursion runs at\n"
       << (scheme_kind() == Scheme::rk4_tree ? "  Dofs q_sum, qd_sum;      // the stages' weighted rates and accelerations\n" : "")
-      << (friction_frames().empty() ? "" : "  FrictionColumns friction_columns;  // M^-1's columns of the friction joints\n")
+      << (friction_joints().empty() ? "" : "  FrictionColumns friction_columns;  // M^-1's columns of the friction joints\n")
       << "  detail::Kinematics k;    // where loads other than gravity need the bodies\n"
       << "  detail::Loads l;\n"
       << "};\n\n"
@@ -293,6 +300,9 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
   }
   if (scheme_kind() == Scheme::staggered_nps) o << "  " << ns << "TreeSystem t;\n";
   if (scheme_kind() == Scheme::staggered4) o << "  State start;  // the state at t, restored when a substep fails\n";
+  if (!friction_joints().empty()) {
+    o << "  std::array<" << ns << "BodyVectors, kFrictionJoints> friction_columns;  // responses to the friction impulses\n";
+  }
   if (scheme_kind() == Scheme::rk4_projected) {
     o << "  State sum;  // the Runge-Kutta stages' weighted rates, in a state's fields\n"
       << "  std::array<mbrt::EulerParameters, kRigidBodies> p_stage;  // a stage's Euler parameters, not normalized\n";
@@ -369,6 +379,7 @@ void Emitter::model_members(std::ostringstream& o) const {
       break;
   }
   if (has_contacts()) contact_members(o);
+  if (!tree_scheme()) absolute_friction_members(o);
   o << "\n";
 }
 

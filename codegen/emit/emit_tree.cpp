@@ -229,25 +229,10 @@ void Emitter::tree_types(std::ostringstream& o) const {
     << "using Dofs = std::array<double, kDofs>;\n"
     << "// cos and sin of half of each revolute joint's angle from its frame's x axis.\n"
     << "using HalfAngles = std::array<mbrt::SinCos, kDofs>;\n\n";
-  const std::vector<size_t> friction = friction_frames();
-  if (friction.empty()) return;
-  o << "// The joints with Coulomb friction (docs/friction.md), friction:: indices\n"
-    << "// into State::friction and State::stuck.\n"
-    << "inline constexpr int kFrictionJoints = " << friction.size() << ";\nnamespace friction {\n";
-  for (size_t c = 0; c < friction.size(); ++c) {
-    o << "inline constexpr int " << m_.joints[static_cast<size_t>(a_.tree_frames.frames[friction[c]].joint)].name << " = " << c << ";\n";
-  }
-  o << "}  // namespace friction\n"
-    << "// Column c: M^-1 times a unit force in friction joint c.\n"
+  if (friction_joints().empty()) return;
+  friction_declarations(o);
+  o << "// Column c: M^-1 times a unit force in friction joint c.\n"
     << "using FrictionColumns = std::array<Dofs, kFrictionJoints>;\n\n";
-}
-
-std::string Emitter::friction_joint_names() const {
-  std::string names;
-  for (size_t k : friction_frames()) {
-    names += (names.empty() ? "\"" : ", \"") + m_.joints[static_cast<size_t>(a_.tree_frames.frames[k].joint)].name + "\"";
-  }
-  return names;
 }
 
 std::vector<size_t> Emitter::friction_frames() const {
@@ -260,38 +245,18 @@ std::vector<size_t> Emitter::friction_frames() const {
   return out;
 }
 
-// The projected Gauss-Seidel sweeps of the friction impulses per step
-// (include/mbrt/joint_friction.hpp): one is exact for one joint; for more,
-// two per joint, warm-started from the last step's (docs/friction.md).
+// The tree's friction constants: the shared limits and each joint's
+// coordinate (docs/friction.md).
 void Emitter::friction_constants(std::ostringstream& o) const {
   const std::vector<size_t> friction = friction_frames();
   if (friction.empty()) return;
-  std::string dofs, limits, static_limits, per_load, static_per_load;
-  bool loads = false;
+  std::string dofs;
   for (size_t c = 0; c < friction.size(); ++c) {
-    const TreeFrame& f = a_.tree_frames.frames[friction[c]];
-    const std::string comma = c ? ", " : "";
-    dofs += comma + "body::" + body(f.body).name;
-    limits += comma + num(f.friction.kinetic);
-    static_limits += comma + num(f.friction.static_limit);
-    per_load += comma + num(f.friction.kinetic_per_load);
-    static_per_load += comma + num(f.friction.static_per_load);
-    loads = loads || f.friction.load_dependent();
+    dofs += (c ? ", " : "") + std::string("body::") + body(a_.tree_frames.frames[friction[c]].body).name;
   }
-  const size_t sweeps = friction.size() == 1 ? 1 : 2 * friction.size();
-  o << "// Joint friction (docs/friction.md), by friction:: index: each joint's\n"
-    << "// coordinate; kinetic and static Coulomb limits (N m or N), each a constant\n"
-    << "// plus a multiple of the joint's transverse reaction (m or 1); projected\n"
-    << "// Gauss-Seidel sweeps a step.\n"
-    << "static constexpr int kFrictionJoints = mbrt::models::" << m_.name << "::kFrictionJoints;\n"
-    << "using FrictionColumns = mbrt::models::" << m_.name << "::FrictionColumns;\n"
-    << "static constexpr std::array<std::size_t, kFrictionJoints> kFrictionDof{{" << dofs << "}};\n"
-    << "static constexpr std::array<double, kFrictionJoints> kFrictionLimit{{" << limits << "}};\n"
-    << "static constexpr std::array<double, kFrictionJoints> kFrictionStaticLimit{{" << static_limits << "}};\n"
-    << "static constexpr std::array<double, kFrictionJoints> kFrictionPerLoad{{" << per_load << "}};\n"
-    << "static constexpr std::array<double, kFrictionJoints> kFrictionStaticPerLoad{{" << static_per_load << "}};\n"
-    << "static constexpr bool kFrictionLoads = " << (loads ? "true" : "false") << ";\n"
-    << "static constexpr int kFrictionSweeps = " << sweeps << ";\n";
+  friction_limits(o);
+  o << "using FrictionColumns = mbrt::models::" << m_.name << "::FrictionColumns;\n"
+    << "static constexpr std::array<std::size_t, kFrictionJoints> kFrictionDof{{" << dofs << "}};  // their coordinates\n";
 }
 
 // M^-1's columns of the friction joints at s.q: the recursion without rates,
@@ -314,32 +279,6 @@ void Emitter::friction_response_kernel(std::ostringstream& o) const {
     << "static void friction_response([[maybe_unused]] const State& s, [[maybe_unused]] const HalfAngles& ha, "
     << "FrictionColumns& g) noexcept {\n"
     << line.code("  ") << "}\n\n";
-}
-
-// Where a friction limit depends on the load: each friction joint's
-// transverse reaction force from the multipliers at the state (reactions(),
-// the absolute-coordinate constraint forces of the tree's joints), 0 for
-// the others. The joint's axis is its frame's a1.
-void Emitter::friction_loads_function(std::ostringstream& o) const {
-  const std::vector<size_t> friction = friction_frames();
-  bool loads = false;
-  for (size_t k : friction) loads = loads || a_.tree_frames.frames[k].friction.load_dependent();
-  if (!loads) return;
-  o << "// (s with its body states) => (load): each friction joint's transverse\n"
-    << "// reaction force (N), where its limit depends on it; 0 elsewhere.\n"
-    << "static void friction_loads(const State& s, std::array<double, kFrictionJoints>& load) noexcept {\n"
-    << "  Reactions r;\n  reactions(s, r);\n";
-  for (size_t c = 0; c < friction.size(); ++c) {
-    const TreeFrame& f = a_.tree_frames.frames[friction[c]];
-    const std::string name = m_.joints[static_cast<size_t>(f.joint)].name;
-    o << "  load[" << c << "] = ";
-    if (f.friction.load_dependent()) {
-      o << "std::hypot(r[constraint::" << name << "].force_joint[1], r[constraint::" << name << "].force_joint[2]);\n";
-    } else {
-      o << "0.0;\n";
-    }
-  }
-  o << "}\n\n";
 }
 
 void Emitter::tree_kernels(std::ostringstream& o) const {

@@ -214,6 +214,7 @@ class Emitter {
   std::string source() const;
   void index_names(std::ostringstream& o) const;  // namespaces body, rigid, particle, constraint
   std::vector<StateField> state_fields() const;
+  void friction_fields(std::vector<StateField>& f, const std::string& along) const;
   void constants(std::ostringstream& o) const;
   void frame_constants(std::ostringstream& o) const;  // joints', inputs' and force elements' vectors, in axes()
   void workspace_types(std::ostringstream& o) const;   // the kernels' types (Kinematics, ConstraintSystem, ...)
@@ -266,6 +267,7 @@ class Emitter {
   int contact_sweeps() const;
   std::string contact_groups() const;  // struct Model's kContactGroups
   void mechanism_kernels(std::ostringstream& o) const;  // jacobian_times_in, solve_in, subtract_constraint_forces_in
+  void displace_function(std::ostringstream& o) const;  // positions moved by [dr; rotation vector] per body
   bool has_inputs() const { return !m_.inputs.empty(); }
   bool has_outputs() const { return !m_.outputs.empty(); }
   void input_declarations(std::ostringstream& o) const;   // index constants, ranges, safe values
@@ -307,14 +309,21 @@ class Emitter {
   int tree_dofs() const { return static_cast<int>(a_.tree_frames.frames.size()); }
   void tree_kernels(std::ostringstream& o) const;
   std::vector<Expr> tree_recursion(const TreeRecursionTerms& terms) const;  // into StraightLine::current()
-  // Joint friction (docs/friction.md): the frames of the joints with
-  // friction, in the model's joint order; their names, quoted ("a", "b");
-  // their constants and kernel.
+  // Joint friction in the tree (docs/friction.md): the frames of the joints
+  // with friction, in the model's joint order; their constants and kernel.
   std::vector<size_t> friction_frames() const;
-  std::string friction_joint_names() const;
   void friction_constants(std::ostringstream& o) const;  // in struct Model
   void friction_response_kernel(std::ostringstream& o) const;
+  // emit_friction.cpp: joint friction in both families. The model's joints
+  // with friction, in its order; their names, quoted ("a", "b"); the
+  // header's kFrictionJoints and namespace friction; struct Model's limits
+  // and transverse loads; the absolute schemes' rows and columns.
+  std::vector<int> friction_joints() const;
+  std::string friction_joint_names() const;
+  void friction_declarations(std::ostringstream& o) const;
+  void friction_limits(std::ostringstream& o) const;
   void friction_loads_function(std::ostringstream& o) const;
+  void absolute_friction_members(std::ostringstream& o) const;
 
   // emit_planar.cpp: namespace planar { ... step(s) } from a planar emitter.
   void planar_stages(std::ostringstream& o) const;

@@ -436,6 +436,46 @@ std::vector<ContactPlan> contact_plans(const Model& model, const Analysis& a) {
 
 }  // namespace
 
+// Joint friction in the absolute-coordinate schemes (docs/friction.md):
+// its impulses need S factorized at the step's end, which staggered-nps and
+// ali3p do not keep; staggered4's middle substep runs backwards, where
+// dissipation cannot; a joint a driver turns does not slip; friction and
+// contacts in one mechanism are not solved together.
+static void check_absolute_friction(const Model& model, const Analysis& a) {
+  const mbrt::Scheme scheme = model.solver.scheme;
+  if (mbrt::joint_space(scheme)) return;
+  for (const Joint& j : model.joints) {
+    if (!j.friction.any()) continue;
+    const std::string key = "joints." + j.name + ".friction";
+    if (scheme == mbrt::Scheme::staggered_nps || scheme == mbrt::Scheme::ali3p) {
+      throw ModelError(j.where, key,
+                       "joint friction needs staggered-pcst, baumgarte, blajer, rk4-projected or a tree scheme "
+                       "(rk4-tree, midpoint-tree, staggered-tree); the scheme is " +
+                           std::string(mbrt::scheme_name(scheme)) + ", which does not keep S's factor (docs/friction.md)");
+    }
+    if (scheme == mbrt::Scheme::staggered4) {
+      throw ModelError(j.where, key,
+                       "joint friction needs a scheme that steps forward in time, e.g. staggered-pcst (staggered4's "
+                       "middle substep runs backwards; docs/schemes.md)");
+    }
+    for (const Driver& d : model.drivers) {
+      if (d.joint >= 0 && model.joints[static_cast<size_t>(d.joint)].name == j.name) {
+        throw ModelError(j.where, key,
+                         "joint '" + j.name + "' is driven by '" + d.name + "': a driven joint does not slip, so its friction "
+                         "does nothing (docs/friction.md)");
+      }
+    }
+    const int body = j.body2 != kGround ? j.body2 : j.body1;
+    for (const ContactPlan& c : a.contacts) {
+      if (c.mechanism == a.mechanism[static_cast<size_t>(body)]) {
+        throw ModelError(j.where, key,
+                         "contact '" + model.contacts[static_cast<size_t>(c.model_index)].name + "' acts on the same mechanism as joint '" +
+                             j.name + "': contacts and joint friction in one mechanism are not supported yet (docs/friction.md)");
+      }
+    }
+  }
+}
+
 Analysis analyse(const Model& model, const Specializations& specialize) {
   Analysis a;
   a.specialize = specialize;
@@ -588,16 +628,9 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
                            "): in absolute coordinates a rotor's inertia would couple the two bodies' mass blocks");
     }
   }
-  for (const Joint& j : model.joints) {
-    if (j.friction.any() && !mbrt::joint_space(model.solver.scheme)) {
-      throw ModelError(j.where, "joints." + j.name + ".friction",
-                       "joint friction needs a tree scheme, rk4-tree, midpoint-tree or staggered-tree (the scheme is " +
-                           std::string(mbrt::scheme_name(model.solver.scheme)) +
-                           "): the schemes in absolute coordinates do not support it yet (docs/friction.md)");
-    }
-  }
   a.mechanism = mechanisms(model, a.constraints);
   a.contacts = contact_plans(model, a);
+  check_absolute_friction(model, a);
   if (mbrt::joint_space(model.solver.scheme)) {
     a.tree_frames = plan_tree_frames(model, a.constraints);
     if (!a.tree_frames.refusal.empty()) {

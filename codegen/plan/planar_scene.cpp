@@ -174,6 +174,12 @@ PlanarPlan plan_planar(const Model& model, const Analysis& a) {
     plan.refusal = "the model has contacts (docs/contact.md)";
     return plan;
   }
+  for (const Joint& j : model.joints) {
+    if (j.friction.any()) {  // the planar step has no impulse path
+      plan.refusal = "the model has joint friction (docs/friction.md)";
+      return plan;
+    }
+  }
   if (a.tunable) {  // the planar kernels fold the model's values
     plan.refusal = "the model has tunable keys (docs/parameters.md)";
     return plan;

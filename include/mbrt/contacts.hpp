@@ -22,6 +22,7 @@
 
 #include "mbrt/contact_geometry.hpp"
 #include "mbrt/contact_trials.hpp"
+#include "mbrt/mechanism_response.hpp"
 
 namespace mbrt {
 
@@ -109,54 +110,6 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<d
   for (int l = 0; l < used; ++l) impulse[static_cast<std::size_t>(group[static_cast<std::size_t>(l)])] = p.template segment<3>(3 * l);
 }
 
-// A generated model's view of its joints for contacts on jointed bodies: an
-// impulse's response with the joints is the free response x = M^-1 J^T P
-// less M^-1 B^T z, z = S^-1 B x (S = B M^-1 B^T factorized by the scheme at
-// the step's end), so that the joints move with it (B dv = 0). The scheme's
-// factor is of S + eps I (its penalty or regularization, about 1e-6): two
-// refinements z += (S + eps I)^-1 (B x - S z) make the joints rigid to
-// round-off, each gaining a factor eps / (S's smallest eigenvalue). Left
-// compliant by eps, joints would let a statically indeterminate mechanism
-// (a box of two welded halves on four corners) carry internal friction
-// forces, and it would slide where it sticks.
-template <class M>
-struct Joints {
-  static constexpr int kRefinements = 2;
-  const typename M::ConstraintSystem* c;  // null where no contact's body is in a joint
-  // (x) => (x with the joints' share; z, the joints' impulses), over one
-  // group's mechanism (M::kContactGroups index) or, group < 0, all of them.
-  typename M::Rows constrain(typename M::BodyVectors& x, int group = -1) const noexcept {
-    const typename M::Rows bx = jacobian_times(group, x);
-    typename M::Rows z = bx;
-    solve(group, z);
-    for (int i = 0; i < kRefinements; ++i) {
-      typename M::BodyVectors d;
-      for (Vec6& e : d) e.setZero();
-      subtract_forces(group, z, d);  // d = -M^-1 B^T z
-      typename M::Rows r = bx + jacobian_times(group, d);  // B x - S z
-      solve(group, r);
-      z += r;
-    }
-    subtract_forces(group, z, x);
-    return z;
-  }
-
- private:
-  // The whole model's kernels or one mechanism's (a constant per call site:
-  // the same work every step).
-  typename M::Rows jacobian_times(int group, const typename M::BodyVectors& u) const noexcept {
-    return group < 0 ? M::jacobian_times(*c, u) : M::jacobian_times_in(group, *c, u);
-  }
-  void solve(int group, typename M::Rows& x) const noexcept {
-    if (group < 0) M::solve(*c, x);
-    else M::solve_in(group, *c, x);
-  }
-  void subtract_forces(int group, const typename M::Rows& z, typename M::BodyVectors& u) const noexcept {
-    if (group < 0) M::subtract_constraint_forces(*c, z, 1.0, u);
-    else M::subtract_constraint_forces_in(group, *c, z, 1.0, u);
-  }
-};
-
 // K of a mechanism with joints: the free part (delassus_matrix) plus, per
 // column (a contact's unit impulse), what the joints take back: the
 // constrained response's point velocities at the mechanism's contacts.
@@ -198,7 +151,7 @@ void add_joints(const std::array<ContactPoint, N>& data, const ContactProblem<N>
 // positions. M::kBounceSpeed: the approach speed below which a contact does
 // not bounce (so a body at rest settles instead of chattering).
 template <class M>
-typename M::Rows resolve_contacts(typename M::State& s, const contact_detail::Joints<M>& joints,
+typename M::Rows resolve_contacts(typename M::State& s, const Joints<M>& joints,
                                   const std::array<double, M::kContacts>& start_normal_velocity) noexcept {
   constexpr std::size_t N = static_cast<std::size_t>(M::kContacts);
   constexpr double h = M::kStep;
@@ -334,7 +287,7 @@ typename M::Rows contact_step(typename M::State& start, typename M::State& s,
       const contact_detail::Frame f = contact_detail::frame_of(M::kContactPoints[i], before[i]);
       start_normal_velocity[i] = contact_detail::point_velocity(M::kContactPoints[i], before[i], f)[0];
     }
-    return resolve_contacts<M>(s, contact_detail::Joints<M>{c}, start_normal_velocity);
+    return resolve_contacts<M>(s, Joints<M>{c}, start_normal_velocity);
   } else {
     (void)start, (void)s, (void)c;
     return M::Rows::Zero();

@@ -25,17 +25,34 @@ inline double rate_of(const Row& r, const BodyMotion& m1, const BodyMotion& m2) 
 }
 }  // namespace detail
 
+// A joint coordinate's value and its row: rate = J1 u1 + J2 u2 with
+// u = [v; w_body] of each body (what joint friction acts along).
+struct JointRow {
+  double position;  // rad or m
+  Eigen::Matrix<double, 1, 6> J1, J2;
+};
+
 // Angle of body 2 about the axis of body 1, in (-pi, pi].
-inline JointCoordinate revolute_coordinate(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+inline JointRow revolute_row(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
   const AngleRow r = relative_angle_row(m1.pose, m1.vel, f.a1, f.b1, f.c1, m2.pose, m2.vel, f.b2);
-  return {r.theta, detail::rate_of(r, m1, m2)};
+  return {r.theta, r.J1, r.J2};
 }
 
 // Displacement of the joint point of body 2 along the axis of body 1.
-inline JointCoordinate prismatic_coordinate(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+inline JointRow prismatic_row(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
   const ScalarRow r =
       normal_dot_difference_row(carried_direction(m1.pose, m1.vel, f.a1), detail::joint_points(f, m1, m2));
-  return {r.phi, detail::rate_of(r, m1, m2)};
+  return {r.phi, r.J1, r.J2};
+}
+
+inline JointCoordinate revolute_coordinate(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  const JointRow r = revolute_row(f, m1, m2);
+  return {r.position, detail::rate_of(r, m1, m2)};
+}
+
+inline JointCoordinate prismatic_coordinate(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2) noexcept {
+  const JointRow r = prismatic_row(f, m1, m2);
+  return {r.position, detail::rate_of(r, m1, m2)};
 }
 
 }  // namespace mbrt

@@ -47,31 +47,87 @@ inline constexpr int kFrictionJointsOf = 0;
 template <class M>
 inline constexpr int kFrictionJointsOf<M, std::void_t<decltype(M::kFrictionJoints)>> = M::kFrictionJoints;
 
-// x with x_i = 0 where mask_i = 0 and sum_k G_ik x_k = b_i where mask_i = 1,
-// G_ik = g[k][dof_i] the friction joints' block of M^-1 (positive
-// definite): the masked rows are made identity, so the work is one n x n
-// Cholesky factorization whatever the mask.
-template <class M, std::size_t n = M::kFrictionJoints>
-std::array<double, n> solve_friction_block(const typename M::FrictionColumns& g, const std::array<double, n>& mask,
-                                           const std::array<double, n>& b) noexcept {
+namespace friction_detail {
+
+template <std::size_t n>
+using Values = std::array<double, n>;
+template <std::size_t n>
+using Coupling = Eigen::Matrix<double, static_cast<int>(n), static_cast<int>(n)>;
+
+// The masked system of the exact stuck solve: K_ik where both joints are
+// masked, identity where not, b where masked, 0 where not: the work is the
+// same whatever the mask.
+template <std::size_t n>
+void masked_system(const Coupling<n>& k, const Values<n>& mask, const Values<n>& b, Coupling<n>& a,
+                   Eigen::Matrix<double, static_cast<int>(n), 1>& x) noexcept {
   constexpr int nn = static_cast<int>(n);
-  Eigen::Matrix<double, nn, nn> a;
-  Eigen::Matrix<double, nn, 1> x;
   for (int i = 0; i < nn; ++i) {
     const std::size_t ui = static_cast<std::size_t>(i);
-    for (int k = 0; k < nn; ++k) {
-      const std::size_t uk = static_cast<std::size_t>(k);
-      a(i, k) = mask[ui] * mask[uk] * g[uk][M::kFrictionDof[ui]] + (i == k ? 1.0 - mask[ui] : 0.0);
+    for (int c = 0; c < nn; ++c) {
+      const std::size_t uc = static_cast<std::size_t>(c);
+      a(i, c) = mask[ui] * mask[uc] * k(i, c) + (i == c ? 1.0 - mask[ui] : 0.0);
     }
     x(i) = mask[ui] * b[ui];
   }
+}
+
+// x with x_i = 0 where mask_i = 0 and sum_c K_ic x_c = b_i where mask_i = 1,
+// K positive definite (a tree's block of M^-1): one Cholesky factorization.
+template <std::size_t n>
+Values<n> solve_masked(const Coupling<n>& k, const Values<n>& mask, const Values<n>& b) noexcept {
+  Coupling<n> a;
+  Eigen::Matrix<double, static_cast<int>(n), 1> x;
+  masked_system<n>(k, mask, b, a, x);
   mbrt::cholesky_in_place(a);
   mbrt::solve_lower(a, x);
   mbrt::solve_lower_transposed(a, x);
-  std::array<double, n> out;
+  Values<n> out;
   for (std::size_t i = 0; i < n; ++i) out[i] = x(static_cast<int>(i));
   return out;
 }
+
+// The impulses p (in: a start within the limits; out: the result) of
+// joints whose rates are v0 + K p, |p_i| <= limit_i: projected Gauss-Seidel
+// sweeps, each p_i in turn the clamped value that zeroes its own rate; then
+// one exact solve (solve_stuck(mask, b), K restricted to the mask) on the
+// joints the sweeps left stuck, with the slipping ones at their limits, and
+// the limits again. Returns the stuck mask (1 where |p_i| < limit_i).
+// The sweeps converge slowly where joints are strongly coupled; the exact
+// solve stops them to round-off once the stick/slip split is found.
+template <std::size_t n, class StuckSolve>
+Values<n> solve_impulses(const Coupling<n>& k, const Values<n>& v0, const Values<n>& limit, int sweeps,
+                         const StuckSolve& solve_stuck, Values<n>& p) noexcept {
+  constexpr int nn = static_cast<int>(n);
+  const auto rate = [&](std::size_t i) {  // joint i's end rate
+    double v = v0[i];
+    for (std::size_t c = 0; c < n; ++c) v += k(static_cast<int>(i), static_cast<int>(c)) * p[c];
+    return v;
+  };
+  Values<n> v;
+  for (std::size_t i = 0; i < n; ++i) v[i] = rate(i);
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    for (int i = 0; i < nn; ++i) {
+      const std::size_t ui = static_cast<std::size_t>(i);
+      const double next = std::fmin(std::fmax(p[ui] - v[ui] / k(i, i), -limit[ui]), limit[ui]);
+      const double change = next - p[ui];
+      p[ui] = next;
+      for (int c = 0; c < nn; ++c) v[static_cast<std::size_t>(c)] += k(c, i) * change;
+    }
+  }
+  Values<n> stuck, minus_rate;
+  for (std::size_t i = 0; i < n; ++i) {
+    stuck[i] = std::abs(p[i]) < limit[i] ? 1.0 : 0.0;
+    minus_rate[i] = -rate(i);
+  }
+  const Values<n> to_stop = solve_stuck(stuck, minus_rate);
+  for (std::size_t i = 0; i < n; ++i) {
+    p[i] = std::fmin(std::fmax(p[i] + to_stop[i], -limit[i]), limit[i]);
+    stuck[i] = std::abs(p[i]) < limit[i] ? 1.0 : 0.0;
+  }
+  return stuck;
+}
+
+}  // namespace friction_detail
 
 // (s.q, s.qd without friction, w.half_angles of s.q, w.q0 the step's start)
 // => (s.q, s.qd with the friction impulses, s.friction, s.stuck,
@@ -80,20 +136,22 @@ template <class M>
 void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
   constexpr std::size_t n = M::kFrictionJoints;
   constexpr double h = M::kStep;
+  using Values = friction_detail::Values<n>;
   auto& g = w.friction_columns;
   M::friction_response(s, w.half_angles, g);
-  const auto rate = [&](std::size_t i, const std::array<double, n>& impulse) {  // joint i's end rate
-    double v = s.qd[M::kFrictionDof[i]];
-    for (std::size_t k = 0; k < n; ++k) v += g[k][M::kFrictionDof[i]] * impulse[k];
-    return v;
-  };
-  std::array<double, n> load{};  // transverse reactions, where limits depend on them
+  friction_detail::Coupling<n> k;  // K_ic = g[c][dof_i]: joint i's rate per unit impulse in joint c
+  Values v0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t c = 0; c < n; ++c) k(static_cast<int>(i), static_cast<int>(c)) = g[c][M::kFrictionDof[i]];
+    v0[i] = s.qd[M::kFrictionDof[i]];
+  }
+  Values load{};  // transverse reactions, where limits depend on them
   if constexpr (M::kFrictionLoads) {
     // At the frictionless step's end: a splitting, like the impulses.
     M::body_states(s.q, w.half_angles, s.qd, s);
     M::friction_loads(s, load);
   }
-  std::array<double, n> p, v, limit;  // impulses, their joints' rates, |p| bounds
+  Values p, limit;  // impulses, |p| bounds
   for (std::size_t i = 0; i < n; ++i) {
     // A joint at rest at the step's start (stuck, or started at rest) holds
     // up to its static limit; a sliding one feels the kinetic limit.
@@ -103,34 +161,14 @@ void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
                h;
     p[i] = std::fmin(std::fmax(s.friction[i] * h, -limit[i]), limit[i]);  // fmax drops a NaN of a failed step
   }
-  for (std::size_t i = 0; i < n; ++i) v[i] = rate(i, p);
-  for (int sweep = 0; sweep < M::kFrictionSweeps; ++sweep) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const double next = std::fmin(std::fmax(p[i] - v[i] / g[i][M::kFrictionDof[i]], -limit[i]), limit[i]);
-      const double change = next - p[i];
-      p[i] = next;
-      for (std::size_t k = 0; k < n; ++k) v[k] += g[i][M::kFrictionDof[k]] * change;
-    }
-  }
-  // The sweeps converge slowly where joints are strongly coupled; with the
-  // stick/slip split they found, one exact solve on the stuck joints (slipping
-  // ones at their limits) stops them to round-off, then the bounds again.
-  std::array<double, n> stuck, minus_rate;
-  for (std::size_t i = 0; i < n; ++i) {
-    stuck[i] = std::abs(p[i]) < limit[i] ? 1.0 : 0.0;
-    minus_rate[i] = -rate(i, p);
-  }
-  const std::array<double, n> to_stop = solve_friction_block<M>(g, stuck, minus_rate);
-  for (std::size_t i = 0; i < n; ++i) {
-    p[i] = std::fmin(std::fmax(p[i] + to_stop[i], -limit[i]), limit[i]);
-    stuck[i] = std::abs(p[i]) < limit[i] ? 1.0 : 0.0;  // at the step's end
-  }
+  const auto cholesky = [&](const Values& mask, const Values& b) { return friction_detail::solve_masked<n>(k, mask, b); };
+  const Values stuck = friction_detail::solve_impulses<n>(k, v0, limit, M::kFrictionSweeps, cholesky, p);
 
   // Positions: the impulse as a force p / h over the step moves them by
   // h/2 G p. A joint stuck at the step's start and at its end is instead
   // held where it was (w.q0): the smooth step's displacement there is h/2
   // of its end rate only up to O(h^3), which would let a stuck joint creep.
-  std::array<double, n> r, hold, miss;  // position impulses (dq = G r); 1 where held; held joints' offsets
+  Values r, hold, miss;  // position impulses (dq = G r); 1 where held; held joints' offsets
   for (std::size_t i = 0; i < n; ++i) {
     r[i] = (0.5 * h) * p[i];
     hold[i] = s.stuck[i] * stuck[i];
@@ -138,17 +176,17 @@ void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t dof = M::kFrictionDof[i];
     double q = s.q[dof];
-    for (std::size_t k = 0; k < n; ++k) q += g[k][dof] * r[k];
+    for (std::size_t c = 0; c < n; ++c) q += g[c][dof] * r[c];
     miss[i] = w.q0[dof] - q;
   }
-  const std::array<double, n> to_hold = solve_friction_block<M>(g, hold, miss);
+  const Values to_hold = friction_detail::solve_masked<n>(k, hold, miss);
   for (std::size_t i = 0; i < n; ++i) r[i] += to_hold[i];
 
   for (std::size_t j = 0; j < s.qd.size(); ++j) {
     double dv = 0.0, dq = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      dv += g[k][j] * p[k];
-      dq += g[k][j] * r[k];
+    for (std::size_t c = 0; c < n; ++c) {
+      dv += g[c][j] * p[c];
+      dq += g[c][j] * r[c];
     }
     s.qd[j] += dv;
     s.q[j] += dq;

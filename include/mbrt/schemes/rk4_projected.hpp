@@ -130,7 +130,8 @@ StepStatus rk4_projected_step(typename M::State& s, typename M::Workspace& w) no
   M::applied_loads(w.k, s, w.l);
   M::constraint_forces(w.c, w.l, M::stacked_phi(w.c), s);
 
-  // Unilateral contacts and their friction (docs/contact.md).
+  // Unilateral contacts and their friction (docs/contact.md), joint friction
+  // (docs/friction.md).
   positive = contacts_after_smooth_step<M>(s, w) && positive;
   if (!finite(s)) {
     s = w.last_good;

@@ -25,6 +25,7 @@
 
 #include "mbrt/contacts.hpp"
 #include "mbrt/scheme.hpp"
+#include "mbrt/schemes/joint_friction_absolute.hpp"
 #include "mbrt/schemes/state_checks.hpp"
 #include "mbrt/step_status.hpp"
 
@@ -133,20 +134,22 @@ void correct_velocities(const typename M::ConstraintSystem& c, typename M::State
   M::set_velocities(u, s);
 }
 
-// The contact step where a contact's body is in a joint (docs/contact.md):
-// S factorized at the step's end gives the joints' share of each impulse.
-// The impulses' displacement (h/2 of the velocity change) is tangent to
-// the joints, off them at second order (a rebounding rod turned about its
-// pin by h/2 dw moves its centre along the tangent): one mass-orthogonal
-// Newton step puts the positions back on the joints and the velocities are
-// projected onto them (Blajer 1997, eqs. 38 and 40), else the next step's
-// stabilization would pay for the gap in energy. Then the accelerations and
-// multipliers at the velocities the contacts left, which the next step
-// starts from (the rod's centripetal load after it rebounds), with the
-// joints' share of the contact forces added to the multipliers. Returns
-// whether S was positive definite.
+// The impulse step where a contact's body is in a joint (docs/contact.md)
+// or a joint has friction (docs/friction.md): S factorized at the step's
+// end gives the joints' share of each impulse. The impulses' displacement
+// (h/2 of the velocity change) is tangent to the joints, off them at second
+// order (a rebounding rod turned about its pin by h/2 dw moves its centre
+// along the tangent): one mass-orthogonal Newton step puts the positions
+// back on the joints (then joints stuck by friction are held where they
+// started) and the velocities are projected onto them (Blajer 1997, eqs. 38
+// and 40), else the next step's stabilization would pay for the gap in
+// energy. Then the accelerations and multipliers at the velocities the
+// impulses left, which the next step starts from (the rod's centripetal
+// load after it rebounds), with the joints' share of the contact and
+// friction forces added to the multipliers. Returns whether S was positive
+// definite.
 template <class M>
-bool contact_step_with_joints(typename M::State& s, typename M::Workspace& w) noexcept {
+bool impulse_step_with_joints(typename M::State& s, typename M::Workspace& w) noexcept {
   using BodyVectors = typename M::BodyVectors;
   // rk4-projected and baumgarte end their smooth step with S factorized at
   // its final positions (only velocities change after); staggered-pcst's
@@ -158,7 +161,15 @@ bool contact_step_with_joints(typename M::State& s, typename M::Workspace& w) no
     M::constraint_rows(w.k, s, w.c);
     positive = factorize_system<M>(s, w.c);
   }
-  const typename M::Rows joint_forces = contact_step<M>(w.last_good, s, &w.c);
+  typename M::Rows joint_forces = contact_step<M>(w.last_good, s, &w.c);
+  [[maybe_unused]] std::conditional_t<(kFrictionJointsOf<M> > 0), FrictionHold<M>, int> hold{};
+  if constexpr (kFrictionJointsOf<M> > 0) {
+    // Friction acts on the joints' rates: first B u = 0 to round-off, which
+    // staggered-pcst's penalty, baumgarte's and blajer's steps only approach
+    // (a stuck joint would keep their residual); rk4-projected has projected.
+    if constexpr (M::kScheme != Scheme::rk4_projected) correct_velocities<M>(w.c, s);
+    joint_forces += absolute_joint_friction<M>(s, w, Joints<M>{&w.c}, hold);
+  }
   M::kinematics(s, w.k);
   M::constraint_rows(w.k, s, w.c);
   positive = factorize_system<M>(s, w.c) && positive;
@@ -168,6 +179,7 @@ bool contact_step_with_joints(typename M::State& s, typename M::Workspace& w) no
   for (auto& d : dq) d.setZero();
   M::subtract_constraint_forces(w.c, z, 1.0, dq);
   M::displace(dq, s);
+  if constexpr (kFrictionJointsOf<M> > 0) hold_stuck_joints<M>(s, w, hold);
   correct_velocities<M>(w.c, s);
   // The rows at the corrected positions (the factor and directions stay,
   // off by the correction), the velocity terms at the new velocities.
@@ -180,12 +192,13 @@ bool contact_step_with_joints(typename M::State& s, typename M::Workspace& w) no
   return positive;
 }
 
-// The contacts after a scheme's smooth step: with the joints' share where a
-// contact's body is in a joint. Returns whether S was positive definite.
+// The contacts and joint friction after a scheme's smooth step: with the
+// joints' share where an impulse acts on a body in a joint. Returns whether
+// S was positive definite.
 template <class M>
 bool contacts_after_smooth_step(typename M::State& s, typename M::Workspace& w) noexcept {
-  if constexpr (jointed_contacts<M>()) {
-    return contact_step_with_joints<M>(s, w);
+  if constexpr (jointed_contacts<M>() || kFrictionJointsOf<M> > 0) {
+    return impulse_step_with_joints<M>(s, w);
   } else {
     contact_step<M>(w.last_good, s);
     return true;
@@ -318,7 +331,8 @@ StepStatus staggered_step(typename M::State& s, typename M::Workspace& w) noexce
     }
   }
 
-  // Unilateral contacts and their friction (docs/contact.md).
+  // Unilateral contacts and their friction (docs/contact.md), joint friction
+  // (docs/friction.md).
   positive = contacts_after_smooth_step<M>(s, w) && positive;
   if (!finite(s)) {
     s = w.last_good;

@@ -1,0 +1,179 @@
+// Coulomb friction in revolute and prismatic joints under the schemes in
+// absolute coordinates (docs/friction.md): the velocity-level impulses of
+// the tree's joint friction (joint_friction.hpp; Moreau 1988, Stewart
+// 2000), here on the joint rates g_i u, g_i the joint coordinate's row
+// over the two bodies' [v; w_body]. A unit impulse along joint c moves the
+// bodies by X_c = M_c^-1 g_c^T, M_c^-1 = M^-1 - M^-1 B^T S^-1 B M^-1 (the
+// joints take their share, mechanism_response.hpp), so joint i's rate
+// changes by K_ic = g_i X_c. K is singular where friction joints close a
+// loop or a joint cannot turn (several pins of one four-bar): the exact
+// stuck solve takes the least-norm impulses there.
+//
+// M provides kFrictionJoints, kFrictionBodies (each joint's two bodies, -1
+// for the ground), kFrictionRevolute, the limits of joint_friction.hpp,
+// kFrictionLoads with friction_loads (the transverse reactions from the
+// multipliers), kFrictionSweeps, friction_rows (each joint's coordinate
+// and row at a state) and friction_columns (M^-1 g^T, without the joints);
+// State has friction and stuck; Workspace has friction_columns.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include <Eigen/Core>
+
+#include "mbrt/constraint_kernels.hpp"
+#include "mbrt/contact_trials.hpp"
+#include "mbrt/joint_coordinates.hpp"
+#include "mbrt/mechanism_response.hpp"
+#include "mbrt/schemes/joint_friction.hpp"
+
+namespace mbrt::schemes {
+
+namespace friction_detail {
+
+// g_i x: a friction joint's rate for body velocities (or responses) x.
+template <class M>
+double joint_rate(int joint, const JointRow& row, const typename M::BodyVectors& x) noexcept {
+  const std::array<int, 2>& bodies = M::kFrictionBodies[static_cast<std::size_t>(joint)];
+  double v = 0.0;
+  if (bodies[0] >= 0) v += row.J1.dot(x[static_cast<std::size_t>(bodies[0])]);
+  if (bodies[1] >= 0) v += row.J2.dot(x[static_cast<std::size_t>(bodies[1])]);
+  return v;
+}
+
+// The masked solve for a K that may be singular: least norm (Tikhonov
+// shift 1e-10 of the diagonal, contact_trials.hpp), the same work whatever
+// the mask.
+template <std::size_t n>
+Values<n> solve_masked_least_norm(const Coupling<n>& k, const Values<n>& mask, const Values<n>& b) noexcept {
+  constexpr int nn = static_cast<int>(n);
+  Coupling<n> a;
+  Eigen::Matrix<double, nn, 1> x;
+  masked_system<n>(k, mask, b, a, x);
+  const Eigen::Matrix<double, nn, 1> y =
+      contact_detail::least_norm_solve<nn>(a, x, Eigen::Matrix<double, nn, 1>::Ones(), nn);
+  Values<n> out;
+  for (std::size_t i = 0; i < n; ++i) out[i] = y(static_cast<int>(i));
+  return out;
+}
+
+// (dq per joint impulse, coefficients) => sum_c x_c r_c over the bodies.
+template <class M>
+typename M::BodyVectors combine(const typename M::FrictionColumns& x, const Values<M::kFrictionJoints>& r) noexcept {
+  typename M::BodyVectors out;
+  for (auto& e : out) e.setZero();
+  for (std::size_t c = 0; c < x.size(); ++c) {
+    for (std::size_t b = 0; b < out.size(); ++b) out[b] += r[c] * x[c][b];
+  }
+  return out;
+}
+
+}  // namespace friction_detail
+
+// What holding the stuck joints after the scheme's position correction
+// needs: K, which joints stuck through the whole step, and where they
+// started.
+template <class M>
+struct FrictionHold {
+  friction_detail::Coupling<M::kFrictionJoints> k;
+  friction_detail::Values<M::kFrictionJoints> hold, start;
+};
+
+// (s after the smooth step and its contacts; w.c: S factorized at s;
+// w.last_good: the step's start) => (s with the friction impulses:
+// velocities, h/2 of their change on the positions, s.friction, s.stuck;
+// w.friction_columns: X; hold: for hold_stuck_joints). Returns the joints'
+// share of the impulses as forces, z / h, for the multipliers. A joint at
+// rest at the step's start (stuck, or started at rest) holds up to its
+// static limit; one that breaks loose within the step slides under the
+// kinetic limit from its start (else it would feel the static limit for a
+// step: an error of (mu_s - mu_k) R h in its rate). Fixed work, no
+// allocation.
+template <class M>
+typename M::Rows absolute_joint_friction(typename M::State& s, typename M::Workspace& w, const Joints<M>& joints,
+                                         FrictionHold<M>& hold) noexcept {
+  constexpr std::size_t n = M::kFrictionJoints;
+  constexpr int nn = static_cast<int>(n);
+  constexpr double h = M::kStep;
+  using Values = friction_detail::Values<n>;
+  std::array<JointRow, n> rows, start_rows;
+  M::friction_rows(s, rows);
+  M::friction_rows(w.last_good, start_rows);
+  auto& x = w.friction_columns;
+  M::friction_columns(s, rows, x);
+  std::array<typename M::Rows, n> z;  // the joints' impulses per unit friction impulse
+  for (std::size_t c = 0; c < n; ++c) z[c] = joints.constrain(x[c]);
+  friction_detail::Coupling<n> k;
+  for (int i = 0; i < nn; ++i) {
+    for (int c = 0; c < nn; ++c) k(i, c) = friction_detail::joint_rate<M>(i, rows[static_cast<std::size_t>(i)], x[static_cast<std::size_t>(c)]);
+  }
+  k = (0.5 * (k + k.transpose())).eval();  // symmetric but for round-off
+  const typename M::BodyVectors u = M::generalized_velocities(s);
+  const typename M::BodyVectors u0 = M::generalized_velocities(w.last_good);
+  Values load{};
+  if constexpr (M::kFrictionLoads) M::friction_loads(s, load);
+  Values v0, limit, kinetic, at_rest, p;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int ji = static_cast<int>(i);
+    v0[i] = friction_detail::joint_rate<M>(ji, rows[i], u);
+    at_rest[i] = s.stuck[i] == 1.0 || friction_detail::joint_rate<M>(ji, start_rows[i], u0) == 0.0 ? 1.0 : 0.0;
+    const double static_limit = (M::kFrictionStaticLimit[i] + M::kFrictionStaticPerLoad[i] * load[i]) * h;
+    kinetic[i] = (M::kFrictionLimit[i] + M::kFrictionPerLoad[i] * load[i]) * h;
+    limit[i] = at_rest[i] * static_limit + (1.0 - at_rest[i]) * kinetic[i];
+    p[i] = std::fmin(std::fmax(s.friction[i] * h, -limit[i]), limit[i]);  // fmax drops a NaN of a failed step
+  }
+  const auto least_norm = [&](const Values& mask, const Values& b) {
+    return friction_detail::solve_masked_least_norm<n>(k, mask, b);
+  };
+  Values stuck = friction_detail::solve_impulses<n>(k, v0, limit, M::kFrictionSweeps, least_norm, p);
+  // Broken loose from rest: the kinetic limit, solved again (both passes run
+  // every step: fixed work).
+  for (std::size_t i = 0; i < n; ++i) {
+    const double loose = at_rest[i] * (1.0 - stuck[i]);
+    limit[i] = loose * kinetic[i] + (1.0 - loose) * limit[i];
+    p[i] = std::fmin(std::fmax(p[i], -limit[i]), limit[i]);
+  }
+  stuck = friction_detail::solve_impulses<n>(k, v0, limit, M::kFrictionSweeps, least_norm, p);
+
+  typename M::BodyVectors change = friction_detail::combine<M>(x, p);
+  typename M::BodyVectors v = u;
+  for (std::size_t b = 0; b < v.size(); ++b) {
+    v[b] += change[b];
+    change[b] *= 0.5 * h;  // the impulse as a force p / h over the step
+  }
+  M::set_velocities(v, s);
+  M::displace(change, s);
+  typename M::Rows joint_forces = M::Rows::Zero();
+  for (std::size_t c = 0; c < n; ++c) joint_forces += (p[c] / h) * z[c];
+  hold.k = k;
+  for (std::size_t i = 0; i < n; ++i) {
+    hold.hold[i] = s.stuck[i] * stuck[i];
+    hold.start[i] = start_rows[i].position;
+    s.friction[i] = p[i] / h;
+    s.stuck[i] = stuck[i];
+  }
+  return joint_forces;
+}
+
+// After the scheme has put the positions back on the joints: each joint
+// stuck through the whole step moved back to where it started (the smooth
+// step's displacement there is h/2 of its end rate only up to O(h^3), and
+// the position correction moves it at second order: it would creep), along
+// the columns X, so the joints stay closed to first order.
+template <class M>
+void hold_stuck_joints(typename M::State& s, const typename M::Workspace& w, const FrictionHold<M>& hold) noexcept {
+  constexpr std::size_t n = M::kFrictionJoints;
+  std::array<JointRow, n> rows;
+  M::friction_rows(s, rows);
+  friction_detail::Values<n> miss;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double offset = hold.start[i] - rows[i].position;
+    miss[i] = M::kFrictionRevolute[i] ? wrap_angle(offset) : offset;
+  }
+  const friction_detail::Values<n> r = friction_detail::solve_masked_least_norm<n>(hold.k, hold.hold, miss);
+  M::displace(friction_detail::combine<M>(w.friction_columns, r), s);
+}
+
+}  // namespace mbrt::schemes
