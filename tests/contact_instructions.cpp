@@ -1,5 +1,7 @@
 // Steps the contact test models (docs/contact.md) through sticking,
-// sliding, rolling, bouncing and tumbling, free bodies and bodies in joints, with callgrind collecting only
+// sliding, rolling, bouncing and tumbling, free bodies and bodies in joints,
+// and joint friction in absolute coordinates (docs/friction.md) through
+// slipping, turning and sticking, with callgrind collecting only
 // inside sampled step() calls, each dumped with its model's name. Run by
 // contact_instructions.sh under valgrind, which checks that every sampled
 // step of a model executes the same number of instructions.
@@ -9,6 +11,8 @@
 #include "contact_incline.hpp"
 #include "contact_jointed.hpp"
 #include "contact_tumble.hpp"
+#include "friction_four_bar_pcst.hpp"
+#include "friction_pendulum_pcst.hpp"
 
 namespace {
 
@@ -43,4 +47,14 @@ int main() {
   namespace jointed = mbrt::models::contact_jointed;
   sample<jointed::State, jointed::Workspace>(
       "contact_jointed", jointed::initial_state(), [](jointed::State& s, jointed::Workspace& w) { jointed::step(s, w); }, 2000);
+  // Joint friction: the pendulum swings, turns and sticks (at 4.9 s); the
+  // four-bar's pin slips both ways and sticks (at 6.5 s).
+  namespace pendulum = mbrt::models::friction_pendulum_pcst;
+  sample<pendulum::State, pendulum::Workspace>(
+      "friction_pendulum_pcst", pendulum::initial_state(),
+      [](pendulum::State& s, pendulum::Workspace& w) { pendulum::step(s, w); }, 6000);
+  namespace four_bar = mbrt::models::friction_four_bar_pcst;
+  sample<four_bar::State, four_bar::Workspace>(
+      "friction_four_bar_pcst", four_bar::initial_state(),
+      [](four_bar::State& s, four_bar::Workspace& w) { four_bar::step(s, w); }, 8000);
 }

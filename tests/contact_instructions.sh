@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The contact step does the same work whatever the contacts do
-# (docs/contact.md): every sampled step of each model (all but its first,
+# (docs/contact.md), and the joint friction step whatever the joints do
+# (docs/friction.md): every sampled step of each model (all but its first,
 # which resolves the dynamic linker's symbols) executes the same number of
 # instructions under callgrind. Exit 77 (skip) without valgrind.
 #   contact_instructions.sh PROGRAM WORK_DIR
@@ -18,7 +19,7 @@ for dump in "$work"/out.*; do
   echo "${dump##*.} $model $total"
 done | sort -n | cut -d' ' -f2- > "$work/totals.txt"
 status=0
-for model in contact_balls contact_incline contact_tumble contact_jointed; do
+for model in contact_balls contact_incline contact_tumble contact_jointed friction_pendulum_pcst friction_four_bar_pcst; do
   counts=$(awk -v m="$model" '$1 == m {print $2}' "$work/totals.txt")
   samples=$(echo "$counts" | wc -l)
   distinct=$(echo "$counts" | tail -n +2 | sort -u)

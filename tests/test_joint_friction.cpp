@@ -34,24 +34,12 @@
 #include "friction_incline.hpp"
 #include "friction_incline_tree.hpp"
 #include "friction_pendulum.hpp"
-#include "analysis.hpp"
-#include "model.hpp"
+#include "friction_model_errors.hpp"
+#include "friction_references.hpp"
 
 namespace {
 
-constexpr double kG = 9.81;
-
-// |theta_next| from |theta|: m g d (cos|theta_next| - cos|theta|) =
-// T (|theta| + |theta_next|), by bisection on (0, |theta|).
-double next_turning_angle(double theta, double mgd, double torque) {
-  double lo = 0.0, hi = theta;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    const double residual = mgd * (std::cos(mid) - std::cos(theta)) - torque * (theta + mid);
-    (residual > 0.0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
+using friction_reference::kG;
 
 // The incline in one scheme: the held block (12 N > m g sin 30 = 9.81 N)
 // never moves; the sliding one (3 N) moves by a t^2 / 2.
@@ -88,12 +76,10 @@ TEST_CASE("a pendulum with a friction moment turns at the angles its energy loss
   namespace m = mbrt::models::friction_pendulum;
   const double mgd = 1.0 * kG * 0.5, torque = 0.2, theta0 = 0.5;
   // The closed-form turning angles, to the first at which it sticks.
-  std::vector<double> expected{theta0};
-  while (mgd * std::sin(expected.back()) > torque) expected.push_back(next_turning_angle(expected.back(), mgd, torque));
+  const std::vector<double> expected = friction_reference::turning_angles(theta0, mgd, torque);
   REQUIRE(expected.size() == 7);  // six swings: 0.5, 0.418, ..., then stuck
   m::State s = m::initial_state();
-  std::vector<double> turning;  // |theta| where the rate changes sign or stops
-  double last_rate = 0.0;
+  friction_reference::TurningPoints turning;  // |theta| where the rate changes sign or stops
   double energy = m::energy(s).total();
   for (int i = 0; i < 8000; ++i) {
     REQUIRE(m::step(s) == mbrt::StepStatus::ok);
@@ -104,13 +90,12 @@ TEST_CASE("a pendulum with a friction moment turns at the angles its energy loss
     CHECK(e <= energy + 3e-6);
     energy = e;
     // Within h of the turn: off by at most |qdd| h^2 / 2 = 4e-6 rad.
-    if (last_rate != 0.0 && (rate * last_rate < 0.0 || s.stuck[0] == 1.0)) turning.push_back(std::abs(theta));
-    last_rate = s.stuck[0] == 1.0 ? 0.0 : rate;
+    turning.add(theta, rate, s.stuck[0] == 1.0);
   }
-  REQUIRE(turning.size() == expected.size() - 1);
-  for (std::size_t n = 0; n < turning.size(); ++n) {
+  REQUIRE(turning.angles.size() == expected.size() - 1);
+  for (std::size_t n = 0; n < turning.angles.size(); ++n) {
     INFO("turning angle ", n + 1);
-    CHECK(std::abs(turning[n] - expected[n + 1]) < 1e-4);
+    CHECK(std::abs(turning.angles[n] - expected[n + 1]) < 1e-4);
   }
   const double theta = theta0 + s.q[m::body::rod];
   CHECK(s.stuck[0] == 1.0);
@@ -194,32 +179,9 @@ TEST_CASE("the friction step allocates nothing and takes stuck and slipping stat
   CHECK(s.stuck[m::friction::slide] == 0.0);
 }
 
-namespace {
-
-using mbrt::codegen::ModelError;
-
-std::string pendulum_with(const std::string& joint_extra, const std::string& type = "revolute") {
-  return "name: p\ngravity: [0, 0, -9.81]\nbodies:\n"
-         "  - {name: rod, mass: 1, inertia: [0.1, 0.1, 0.01], position: [0, 0, -0.5]}\n"
-         "joints:\n"
-         "  - {name: pin, type: " + type + ", body1: ground, body2: rod, point: [0, 0, 0]" +
-         (type == "spherical" ? "" : ", axis: [0, 1, 0]") + joint_extra + "}\n";
-}
-
-// The error's text (file:line: key: message) for a model that must fail.
-std::string error_of(const std::string& yaml) {
-  try {
-    const mbrt::codegen::Model model = mbrt::codegen::parse_model(yaml, "arm.yaml");
-    mbrt::codegen::analyse(model);
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-}  // namespace
-
 TEST_CASE("friction keys: errors name the file, line and key") {
+  using friction_errors::error_of;
+  using friction_errors::pendulum_with;
   const mbrt::codegen::Model ok = mbrt::codegen::parse_model(pendulum_with(", friction: {torque: 0.2}"), "arm.yaml");
   CHECK(ok.joints[0].friction.kinetic == 0.2);
   CHECK(ok.joints[0].friction.static_limit == 0.2);
@@ -261,8 +223,11 @@ TEST_CASE("friction keys: errors name the file, line and key") {
   check(pendulum_with(", friction: {torque: 0.3, static: 0.2}"), "joints[0].friction.static",
         "give one form of friction");
   check(pendulum_with(", friction: {torque: 0.1}", "spherical"), "joints[0].friction", "does not apply to a spherical joint");
-  check(pendulum_with(", friction: {torque: 0.1}") + "solver: {scheme: staggered-pcst}\n", "joints.pin.friction",
-        "joint friction needs a tree scheme, rk4-tree, midpoint-tree or staggered-tree");
+  // The absolute-coordinate schemes that keep no factor of S refuse it
+  // (staggered-pcst, baumgarte, blajer, rk4-projected take it:
+  // test_joint_friction_absolute.cpp).
+  check(pendulum_with(", friction: {torque: 0.1}") + "solver: {scheme: staggered-nps}\n", "joints.pin.friction",
+        "joint friction needs staggered-pcst, baumgarte, blajer, rk4-projected or a tree scheme");
   // A friction output names a joint with friction.
   const std::string output = "inputs:\n  - {name: tau, type: joint_torque, joint: pin, min: -1, max: 1, safe: 0}\n"
                              "outputs:\n  - {name: f, type: joint_friction, joint: pin}\n";
@@ -377,44 +342,12 @@ TEST_CASE("the frictional demo arm publishes each joint's friction torque and st
 }
 
 TEST_CASE("stick-slip on a moving belt: static and kinetic friction give the closed-form stick and slip phases") {
-  // tests/models/friction_belt.yaml: m = 1 kg, k = 100 N/m, v_b = 0.1 m/s,
-  // F_s = 2.5 N, F_k = 1 N. Stuck, the block rides the belt until k x = F_s;
-  // slipping, x - F_k/k = u0 cos(w t) + (v_b/w) sin(w t), u0 = (F_s - F_k)/k,
-  // until its velocity is the belt's again, at w t = 2 pi - 2 atan(u0 w / v_b),
-  // where u = -u0 (the oscillation's energy is the same at both ends).
   namespace m = mbrt::models::friction_belt;
-  const double mass = 1.0, k = 100.0, vb = 0.1, fs = 2.5, fk = 1.0, w = std::sqrt(k / mass);
-  const double u0 = (fs - fk) / k;
-  const double slip = (2.0 * M_PI - 2.0 * std::atan(u0 * w / vb)) / w;  // 0.4318 s
-  const double restick_x = fk / k - u0;                                   // -0.005 m
-  const double stick = (fs / k - restick_x) / vb;                         // 0.3 s
-  const double first_stick = (fs / k) / vb;                               // 0.25 s from x = 0
-
-  m::State s = m::initial_state();
-  const auto x = [&] { return s.rigid[m::rigid::block].r[0]; };
-  std::vector<double> changes, x_at_change;  // times the stick state changed, and x there
-  double stuck = 1.0;                          // it starts moving with the belt
-  for (int i = 0; i < 3000; ++i) {
-    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
-    if (s.stuck[m::friction::contact] != stuck) {
-      stuck = s.stuck[m::friction::contact];
-      changes.push_back(s.t);
-      x_at_change.push_back(x());
-    }
-  }
-  // 3 s: breaks loose at 0.25 s, then slip 0.43 s, stick 0.3 s, ...: 8 changes.
-  REQUIRE(changes.size() >= 8);
-  const double h = m::kStep;
-  CHECK(std::abs(changes[0] - first_stick) < 2.0 * h);
-  for (std::size_t c = 1; c < changes.size(); ++c) {
-    const bool slipped = c % 2 == 1;  // changes[c - 1] broke loose, changes[c] stuck again
-    INFO("phase ", c, slipped ? " (slip)" : " (stick)");
-    CHECK(std::abs(changes[c] - changes[c - 1] - (slipped ? slip : stick)) < 2.0 * h);
-    // Breaking loose where the spring reaches F_s, sticking again at (2 F_k - F_s)/k.
-    CHECK(std::abs(x_at_change[c] - (slipped ? restick_x : fs / k)) < 2.0 * vb * h);
-  }
-  // The belt keeps its speed.
-  CHECK(std::abs(s.rigid[m::rigid::belt].v[0] - vb) < 1e-6);
+  friction_reference::check_belt_phases(
+      m::initial_state(), m::kStep, [](m::State& s) { return m::step(s) == mbrt::StepStatus::ok; },
+      [](const m::State& s) { return s.rigid[m::rigid::block].r[0]; },
+      [](const m::State& s) { return s.rigid[m::rigid::belt].v[0]; },
+      [](const m::State& s) { return s.stuck[m::friction::contact]; });
 }
 
 TEST_CASE("load-dependent pin friction: a spinning disk stops at the closed-form time, a rod is held below mu_s r") {
