@@ -11,7 +11,7 @@
 #include "contact_incline.hpp"
 #include "contact_jointed.hpp"
 #include "contact_tumble.hpp"
-#include "friction_four_bar_pcst.hpp"
+#include "friction_incline_mu_pcst.hpp"
 #include "friction_pendulum_pcst.hpp"
 
 namespace {
@@ -47,14 +47,14 @@ int main() {
   namespace jointed = mbrt::models::contact_jointed;
   sample<jointed::State, jointed::Workspace>(
       "contact_jointed", jointed::initial_state(), [](jointed::State& s, jointed::Workspace& w) { jointed::step(s, w); }, 2000);
-  // Joint friction: the pendulum swings, turns and sticks (at 4.9 s); the
-  // four-bar's pin slips both ways and sticks (at 6.5 s).
+  // Joint friction: the pendulum swings, turns and sticks (at 4.9 s); on the
+  // inclines one block is held and one slides, under load-dependent limits.
   namespace pendulum = mbrt::models::friction_pendulum_pcst;
   sample<pendulum::State, pendulum::Workspace>(
       "friction_pendulum_pcst", pendulum::initial_state(),
       [](pendulum::State& s, pendulum::Workspace& w) { pendulum::step(s, w); }, 6000);
-  namespace four_bar = mbrt::models::friction_four_bar_pcst;
-  sample<four_bar::State, four_bar::Workspace>(
-      "friction_four_bar_pcst", four_bar::initial_state(),
-      [](four_bar::State& s, four_bar::Workspace& w) { four_bar::step(s, w); }, 8000);
+  namespace incline_mu = mbrt::models::friction_incline_mu_pcst;
+  sample<incline_mu::State, incline_mu::Workspace>(
+      "friction_incline_mu_pcst", incline_mu::initial_state(),
+      [](incline_mu::State& s, incline_mu::Workspace& w) { incline_mu::step(s, w); }, 2000);
 }

@@ -4,12 +4,13 @@
 // with a friction moment whose turning angles follow from the energy it
 // loses (all four schemes); blocks on inclines held and sliding under
 // constant friction forces (staggered-pcst) and under load-dependent
-// friction mu |R| (staggered-pcst, rk4-projected); a closed four-bar with a
-// friction moment in one ground pin, whose loss of energy is the moment
-// times the pin's travel and which comes to rest where gravity's moment
-// about the pin is below the friction (staggered-pcst, rk4-projected).
-// Every step returns ok with a finite state; the step allocates nothing;
-// the schemes that cannot take friction refuse it.
+// friction mu |R| (all four); a closed four-bar with a friction moment in
+// one ground pin, whose loss of energy is the moment times the pin's travel
+// and which comes to rest where gravity's moment about the pin is below the
+// friction (staggered-pcst, rk4-projected); the stick-slip oscillator on a
+// moving belt (all four); a 7-link spatial arm with friction in every joint
+// (staggered-pcst). Every step returns ok with a finite state; the step
+// allocates nothing; the schemes that cannot take friction refuse it.
 //
 // What is read from the state, independently of the friction code: joint
 // angles and rates from the bodies' Euler parameters and angular
@@ -37,9 +38,14 @@
 
 #include "allocation_counter.hpp"
 #include "friction_arm_7_pcst.hpp"
+#include "friction_belt_baumgarte.hpp"
+#include "friction_belt_blajer.hpp"
 #include "friction_belt_pcst.hpp"
+#include "friction_belt_rk4p.hpp"
 #include "friction_four_bar_pcst.hpp"
 #include "friction_four_bar_rk4p.hpp"
+#include "friction_incline_mu_baumgarte.hpp"
+#include "friction_incline_mu_blajer.hpp"
 #include "friction_incline_mu_pcst.hpp"
 #include "friction_incline_mu_rk4p.hpp"
 #include "friction_incline_pcst.hpp"
@@ -288,6 +294,8 @@ namespace {
 
 INCLINE_MU_MODEL(InclineMuPcst, friction_incline_mu_pcst);
 INCLINE_MU_MODEL(InclineMuRk4, friction_incline_mu_rk4p);
+INCLINE_MU_MODEL(InclineMuBaumgarte, friction_incline_mu_baumgarte);
+INCLINE_MU_MODEL(InclineMuBlajer, friction_incline_mu_blajer);
 
 template <class M>
 void check_incline_mu() {
@@ -349,6 +357,8 @@ void check_incline_mu() {
 TEST_CASE("load-dependent friction mu |R| on inclines: held at 26 degrees, sliding from the first step at 27") {
   SUBCASE("staggered-pcst") { check_incline_mu<InclineMuPcst>(); }
   SUBCASE("rk4-projected") { check_incline_mu<InclineMuRk4>(); }
+  SUBCASE("baumgarte") { check_incline_mu<InclineMuBaumgarte>(); }
+  SUBCASE("blajer") { check_incline_mu<InclineMuBlajer>(); }
 }
 
 namespace {
@@ -471,15 +481,26 @@ TEST_CASE("a four-bar with a frictional pin loses T times the pin's travel and c
   SUBCASE("rk4-projected") { check_four_bar<FourBarRk4>(); }
 }
 
-TEST_CASE("stick-slip on a moving belt in staggered-pcst: the closed-form stick and slip phases") {
-  // The 1e8 kg belt carries the 1 kg block: the friction joint's column of
-  // K is the block's (the belt barely moves), its share through S.
-  namespace m = mbrt::models::friction_belt_pcst;
-  friction_reference::check_belt_phases(
-      m::initial_state(), m::kStep, [](m::State& s) { return m::step(s) == mbrt::StepStatus::ok; },
-      [](const m::State& s) { return s.rigid[m::rigid::block].r[0]; },
-      [](const m::State& s) { return s.rigid[m::rigid::belt].v[0]; },
-      [](const m::State& s) { return s.stuck[m::friction::contact]; });
+namespace {
+
+// tests/models/friction_belt.yaml in one scheme: the 1e8 kg belt carries the
+// 1 kg block, so the friction joint's column of K is the block's (the belt
+// barely moves), its share through S.
+#define CHECK_BELT(ns)                                                                              \
+  friction_reference::check_belt_phases(                                                            \
+      mbrt::models::ns::initial_state(), mbrt::models::ns::kStep,                                    \
+      [](mbrt::models::ns::State& s) { return mbrt::models::ns::step(s) == mbrt::StepStatus::ok; }, \
+      [](const mbrt::models::ns::State& s) { return s.rigid[mbrt::models::ns::rigid::block].r[0]; }, \
+      [](const mbrt::models::ns::State& s) { return s.rigid[mbrt::models::ns::rigid::belt].v[0]; }, \
+      [](const mbrt::models::ns::State& s) { return s.stuck[mbrt::models::ns::friction::contact]; })
+
+}  // namespace
+
+TEST_CASE("stick-slip on a moving belt: the closed-form stick and slip phases") {
+  SUBCASE("staggered-pcst") { CHECK_BELT(friction_belt_pcst); }
+  SUBCASE("rk4-projected") { CHECK_BELT(friction_belt_rk4p); }
+  SUBCASE("baumgarte") { CHECK_BELT(friction_belt_baumgarte); }
+  SUBCASE("blajer") { CHECK_BELT(friction_belt_blajer); }
 }
 
 TEST_CASE("stress: friction in every joint of a 7-link spatial arm in staggered-pcst") {

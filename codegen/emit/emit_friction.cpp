@@ -82,7 +82,8 @@ void Emitter::friction_loads_function(std::ostringstream& o) const {
     const Joint& j = m_.joints[static_cast<size_t>(friction[c])];
     o << "  load[" << c << "] = ";
     if (j.friction.load_dependent()) {
-      o << "std::hypot(r[constraint::" << j.name << "].force_joint[1], r[constraint::" << j.name << "].force_joint[2]);\n";
+      // sqrt of the sum of squares, not hypot: the same work whatever the load.
+      o << "r[constraint::" << j.name << "].force_joint.tail<2>().norm();\n";
     } else {
       o << "0.0;\n";
     }

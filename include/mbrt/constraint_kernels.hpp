@@ -103,11 +103,15 @@ inline ConstraintRow<C> normal_dot_difference_row(const V& n, const D& d) noexce
 // theta' = a . (omega2 - omega1) in world axes; theta'' adds (omega1 x a) . omega2.
 // phi is returned as theta only through wrap(): the caller subtracts the
 // target angle and wraps, so multi-turn motion has no jump.
+// cos and sin are kept (theta() is their atan2, whose instruction count
+// depends on its argument): joint friction needs only small differences
+// of theta, and its step does the same work every step.
 struct AngleRow {
-  double theta;  // in (-pi, pi]
+  double cos_theta, sin_theta;  // b1 . b2 and c1 . b2, in world axes
   Eigen::Matrix<double, 1, 6> J1;
   Eigen::Matrix<double, 1, 6> J2;
   double quad;
+  double theta() const noexcept { return std::atan2(sin_theta, cos_theta); }  // in (-pi, pi]
 };
 
 inline AngleRow relative_angle_row(const BodyPose& p1, const BodyVelocity& v1, const Vec3& a1, const Vec3& b1,
@@ -115,7 +119,8 @@ inline AngleRow relative_angle_row(const BodyPose& p1, const BodyVelocity& v1, c
   const Vec3 a = p1.R * a1;
   const Vec3 b2w = p2.R * b2;
   AngleRow r;
-  r.theta = std::atan2((p1.R * c1).dot(b2w), (p1.R * b1).dot(b2w));
+  r.cos_theta = (p1.R * b1).dot(b2w);
+  r.sin_theta = (p1.R * c1).dot(b2w);
   r.J1 << 0.0, 0.0, 0.0, -a1.transpose();
   r.J2 << 0.0, 0.0, 0.0, (p2.R.transpose() * a).transpose();
   const Vec3 omega1 = p1.R * v1.w, omega2 = p2.R * v2.w;

@@ -115,7 +115,7 @@ inline ConstraintRows<5> screw(const JointFrame& f, const BodyMotion& m1, const 
   const ScalarRow slide = normal_dot_difference_row(carried_direction(m1.pose, m1.vel, f.a1), detail::joint_points(f, m1, m2));
   const AngleRow turn = relative_angle_row(m1.pose, m1.vel, f.a1, f.b1, f.c1, m2.pose, m2.vel, f.b2);
   set_row(rows, 4,
-          {f.pitch * wrap_angle(slide.phi / f.pitch - turn.theta), slide.J1 - f.pitch * turn.J1,
+          {f.pitch * wrap_angle(slide.phi / f.pitch - turn.theta()), slide.J1 - f.pitch * turn.J1,
            slide.J2 - f.pitch * turn.J2, slide.quad - f.pitch * turn.quad});
   return rows;
 }
@@ -147,7 +147,7 @@ inline ConstraintRows<1, C> driven(const ConstraintRow<C>& r, const TimeValue& f
 inline ConstraintRows<1> joint_angle_driver(const JointFrame& f, const BodyMotion& m1, const BodyMotion& m2,
                                             const TimeValue& target) noexcept {
   const AngleRow turn = relative_angle_row(m1.pose, m1.vel, f.a1, f.b1, f.c1, m2.pose, m2.vel, f.b2);
-  return detail::driven(ScalarRow{wrap_angle(turn.theta - target.f), turn.J1, turn.J2, turn.quad}, target);
+  return detail::driven(ScalarRow{wrap_angle(turn.theta() - target.f), turn.J1, turn.J2, turn.quad}, target);
 }
 
 // Prescribed displacement of the joint point of body 2 along the axis of body 1, from t = 0.

@@ -78,7 +78,8 @@ typename M::BodyVectors combine(const typename M::FrictionColumns& x, const Valu
 template <class M>
 struct FrictionHold {
   friction_detail::Coupling<M::kFrictionJoints> k;
-  friction_detail::Values<M::kFrictionJoints> hold, start;
+  friction_detail::Values<M::kFrictionJoints> hold;
+  std::array<JointRow, M::kFrictionJoints> start;
 };
 
 // (s after the smooth step and its contacts; w.c: S factorized at s;
@@ -87,10 +88,8 @@ struct FrictionHold {
 // w.friction_columns: X; hold: for hold_stuck_joints). Returns the joints'
 // share of the impulses as forces, z / h, for the multipliers. A joint at
 // rest at the step's start (stuck, or started at rest) holds up to its
-// static limit; one that breaks loose within the step slides under the
-// kinetic limit from its start (else it would feel the static limit for a
-// step: an error of (mu_s - mu_k) R h in its rate). Fixed work, no
-// allocation.
+// static limit, one that breaks loose slides under the kinetic one
+// (friction_detail::solve_breaking_loose). Fixed work, no allocation.
 template <class M>
 typename M::Rows absolute_joint_friction(typename M::State& s, typename M::Workspace& w, const Joints<M>& joints,
                                          FrictionHold<M>& hold) noexcept {
@@ -114,28 +113,21 @@ typename M::Rows absolute_joint_friction(typename M::State& s, typename M::Works
   const typename M::BodyVectors u0 = M::generalized_velocities(w.last_good);
   Values load{};
   if constexpr (M::kFrictionLoads) M::friction_loads(s, load);
-  Values v0, limit, kinetic, at_rest, p;
+  Values v0, at_rest, static_limit, kinetic_limit, p;
   for (std::size_t i = 0; i < n; ++i) {
     const int ji = static_cast<int>(i);
     v0[i] = friction_detail::joint_rate<M>(ji, rows[i], u);
-    at_rest[i] = s.stuck[i] == 1.0 || friction_detail::joint_rate<M>(ji, start_rows[i], u0) == 0.0 ? 1.0 : 0.0;
-    const double static_limit = (M::kFrictionStaticLimit[i] + M::kFrictionStaticPerLoad[i] * load[i]) * h;
-    kinetic[i] = (M::kFrictionLimit[i] + M::kFrictionPerLoad[i] * load[i]) * h;
-    limit[i] = at_rest[i] * static_limit + (1.0 - at_rest[i]) * kinetic[i];
-    p[i] = std::fmin(std::fmax(s.friction[i] * h, -limit[i]), limit[i]);  // fmax drops a NaN of a failed step
+    // Bitwise |, not ||: the same instructions whatever the state.
+    at_rest[i] = static_cast<double>((s.stuck[i] == 1.0) | (friction_detail::joint_rate<M>(ji, start_rows[i], u0) == 0.0));
+    static_limit[i] = (M::kFrictionStaticLimit[i] + M::kFrictionStaticPerLoad[i] * load[i]) * h;
+    kinetic_limit[i] = (M::kFrictionLimit[i] + M::kFrictionPerLoad[i] * load[i]) * h;
+    p[i] = s.friction[i] * h;
   }
   const auto least_norm = [&](const Values& mask, const Values& b) {
     return friction_detail::solve_masked_least_norm<n>(k, mask, b);
   };
-  Values stuck = friction_detail::solve_impulses<n>(k, v0, limit, M::kFrictionSweeps, least_norm, p);
-  // Broken loose from rest: the kinetic limit, solved again (both passes run
-  // every step: fixed work).
-  for (std::size_t i = 0; i < n; ++i) {
-    const double loose = at_rest[i] * (1.0 - stuck[i]);
-    limit[i] = loose * kinetic[i] + (1.0 - loose) * limit[i];
-    p[i] = std::fmin(std::fmax(p[i], -limit[i]), limit[i]);
-  }
-  stuck = friction_detail::solve_impulses<n>(k, v0, limit, M::kFrictionSweeps, least_norm, p);
+  const Values stuck = friction_detail::solve_breaking_loose<n>(k, v0, at_rest, static_limit, kinetic_limit,
+                                                                M::kFrictionSweeps, least_norm, p);
 
   typename M::BodyVectors change = friction_detail::combine<M>(x, p);
   typename M::BodyVectors v = u;
@@ -150,7 +142,7 @@ typename M::Rows absolute_joint_friction(typename M::State& s, typename M::Works
   hold.k = k;
   for (std::size_t i = 0; i < n; ++i) {
     hold.hold[i] = s.stuck[i] * stuck[i];
-    hold.start[i] = start_rows[i].position;
+    hold.start[i] = start_rows[i];
     s.friction[i] = p[i] / h;
     s.stuck[i] = stuck[i];
   }
@@ -168,10 +160,7 @@ void hold_stuck_joints(typename M::State& s, const typename M::Workspace& w, con
   std::array<JointRow, n> rows;
   M::friction_rows(s, rows);
   friction_detail::Values<n> miss;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double offset = hold.start[i] - rows[i].position;
-    miss[i] = M::kFrictionRevolute[i] ? wrap_angle(offset) : offset;
-  }
+  for (std::size_t i = 0; i < n; ++i) miss[i] = joint_offset(hold.start[i], rows[i], M::kFrictionRevolute[i]);
   const friction_detail::Values<n> r = friction_detail::solve_masked_least_norm<n>(hold.k, hold.hold, miss);
   M::displace(friction_detail::combine<M>(w.friction_columns, r), s);
 }
