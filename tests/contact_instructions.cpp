@@ -56,5 +56,5 @@ int main() {
   namespace incline_mu = mbrt::models::friction_incline_mu_pcst;
   sample<incline_mu::State, incline_mu::Workspace>(
       "friction_incline_mu_pcst", incline_mu::initial_state(),
-      [](incline_mu::State& s, incline_mu::Workspace& w) { incline_mu::step(s, w); }, 2000);
+      [](incline_mu::State& s, incline_mu::Workspace& w) { incline_mu::step(s, w); }, 4000);
 }

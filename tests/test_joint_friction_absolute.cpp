@@ -94,7 +94,7 @@ bool all_finite(const State& s) {
 }
 
 // One generated model: its state, step and workspace; friction takes the
-// spatial step (the planar one has no friction impulse: docs/specializations.md).
+// spatial step (the planar one has no friction impulse: docs/friction.md).
 #define FRICTION_MODEL_BASICS(ns)                                                                                  \
   using State = mbrt::models::ns::State;                                                                           \
   using Workspace = mbrt::models::ns::Workspace;                                                                   \

@@ -111,8 +111,9 @@ void Emitter::absolute_friction_members(std::ostringstream& o) const {
     << "static constexpr std::array<bool, kFrictionJoints> kFrictionRevolute{{" << revolute << "}};\n"
     << "// Column c: the bodies' [dv; dw_body] for a unit impulse along friction joint c.\n"
     << "using FrictionColumns = std::array<BodyVectors, kFrictionJoints>;\n"
-    << "// (s) => (r): each friction joint's coordinate (as the joint_position output)\n"
-    << "// and its row over the two bodies' [v; w_body].\n"
+    << "// (s) => (r): where each friction joint is (a revolute joint's cos and sin of\n"
+    << "// its angle, a prismatic joint's slide) and its rate's row over the two\n"
+    << "// bodies' [v; w_body].\n"
     << "static void friction_rows(const State& s, std::array<mbrt::JointRow, kFrictionJoints>& r) noexcept {\n"
     << "  Kinematics k;\n  kinematics(s, k);\n";
   for (size_t c = 0; c < friction.size(); ++c) {

@@ -10,12 +10,15 @@
 //   p_i = -T_i h sign(qd+_i) where qd+_i != 0 (slip), qd+_i = 0 where |p_i| < T_i h (stick),
 // P placing the joints' impulses among the joint coordinates, T_i the
 // static limit for a joint at rest at the step's start and the kinetic one
-// otherwise, each a constant plus a multiple of the joint's transverse
-// reaction. With the joints' block G of M^-1 (positive definite), each p_i
-// in turn is the clamped value that zeroes its own end-of-step rate:
-// projected Gauss-Seidel, a fixed count of sweeps, warm-started from the
-// last step's impulses, then one exact solve on the stuck joints. The
-// positions take the impulse as a force p / h constant over the step,
+// otherwise (and for one at rest that the static limit cannot hold: it
+// breaks loose), each a constant plus a multiple of the joint's transverse
+// reaction. With K, the joints' rate change per unit impulse (here the
+// joints' block of M^-1, positive definite), each p_i in turn is the clamped
+// value that zeroes its own end-of-step rate: projected Gauss-Seidel, a
+// fixed count of sweeps, warm-started from the last step's impulses, then
+// one exact solve on the stuck joints (friction_detail, shared with the
+// absolute-coordinate schemes: joint_friction_absolute.hpp). The positions
+// take the impulse as a force p / h constant over the step,
 // h^2/2 M^-1 P p / h, and a joint stuck through the whole step is put back
 // where it started.
 //
