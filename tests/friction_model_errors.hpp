@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include <doctest/doctest.h>
+
 #include "analysis.hpp"
 #include "model.hpp"
 
@@ -30,6 +32,16 @@ inline std::string error_of(const std::string& yaml) {
     return e.what();
   }
   return "(no error)";
+}
+
+// That the pendulum model `yaml` fails with an error on the joint's line
+// naming `key` and containing `phrase`.
+inline void check(const std::string& yaml, const std::string& key, const std::string& phrase) {
+  const std::string what = error_of(yaml);
+  INFO(what);
+  CHECK(what.find("arm.yaml:6") != std::string::npos);
+  CHECK(what.find(key) != std::string::npos);
+  CHECK(what.find(phrase) != std::string::npos);
 }
 
 }  // namespace friction_errors

@@ -185,13 +185,7 @@ TEST_CASE("friction keys: errors name the file, line and key") {
   const mbrt::codegen::Model ok = mbrt::codegen::parse_model(pendulum_with(", friction: {torque: 0.2}"), "arm.yaml");
   CHECK(ok.joints[0].friction.kinetic == 0.2);
   CHECK(ok.joints[0].friction.static_limit == 0.2);
-  const auto check = [](const std::string& yaml, const std::string& key, const std::string& phrase) {
-    const std::string what = error_of(yaml);
-    INFO(what);
-    CHECK(what.find("arm.yaml:6") != std::string::npos);
-    CHECK(what.find(key) != std::string::npos);
-    CHECK(what.find(phrase) != std::string::npos);
-  };
+  using friction_errors::check;
   check(pendulum_with(", friction: {torque: -0.2}"), "joints[0].friction.torque", "expected a number >= 0");
   check(pendulum_with(", friction: {force: 3}"), "joints[0].friction.force", "revolute joint's friction is a torque");
   check(pendulum_with(", friction: {torque: 3}", "prismatic"), "joints[0].friction.torque",
