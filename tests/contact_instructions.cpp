@@ -1,13 +1,14 @@
 // Steps the contact test models (docs/contact.md) through sticking,
 // sliding, rolling, bouncing and tumbling, free bodies and bodies in joints,
-// and joint friction in absolute coordinates (docs/friction.md) through
-// slipping, turning and sticking, with callgrind collecting only
+// joint friction in absolute coordinates (docs/friction.md) through
+// slipping, turning and sticking, and both in one mechanism, with callgrind collecting only
 // inside sampled step() calls, each dumped with its model's name. Run by
 // contact_instructions.sh under valgrind, which checks that every sampled
 // step of a model executes the same number of instructions.
 #include <valgrind/callgrind.h>
 
 #include "contact_balls.hpp"
+#include "contact_hub_friction_pcst.hpp"
 #include "contact_incline.hpp"
 #include "contact_jointed.hpp"
 #include "contact_tumble.hpp"
@@ -57,4 +58,8 @@ int main() {
   sample<incline_mu::State, incline_mu::Workspace>(
       "friction_incline_mu_pcst", incline_mu::initial_state(),
       [](incline_mu::State& s, incline_mu::Workspace& w) { incline_mu::step(s, w); }, 4000);
+  // Wheels on frictional hubs: rolling, sliding, stopping and held.
+  namespace hub = mbrt::models::contact_hub_friction_pcst;
+  sample<hub::State, hub::Workspace>(
+      "contact_hub_friction_pcst", hub::initial_state(), [](hub::State& s, hub::Workspace& w) { hub::step(s, w); }, 2400);
 }

@@ -19,7 +19,7 @@ for dump in "$work"/out.*; do
   echo "${dump##*.} $model $total"
 done | sort -n | cut -d' ' -f2- > "$work/totals.txt"
 status=0
-for model in contact_balls contact_incline contact_tumble contact_jointed friction_pendulum_pcst friction_incline_mu_pcst; do
+for model in contact_balls contact_incline contact_tumble contact_jointed friction_pendulum_pcst friction_incline_mu_pcst contact_hub_friction_pcst; do
   counts=$(awk -v m="$model" '$1 == m {print $2}' "$work/totals.txt")
   samples=$(echo "$counts" | wc -l)
   distinct=$(echo "$counts" | tail -n +2 | sort -u)

@@ -593,11 +593,6 @@ TEST_CASE("joint friction in absolute coordinates: which schemes take it, and th
   check(constant + "drivers:\n  - {name: motor, type: joint_angle, joint: pin, function: {polynomial: [0, 1]}}\n"
                    "solver: {scheme: staggered-pcst}\n",
         "joints.pin.friction", "a driven joint does not slip");
-  // A contact on the same mechanism: not solved together yet.
-  check(constant + "  - {name: tip, type: point_contact, body: rod, point: [0, 0, -1], plane_point: [0, 0, -2],\n"
-                   "     plane_normal: [0, 0, 1], friction: {static: 0.5, kinetic: 0.4}}\n"
-                   "solver: {scheme: staggered-pcst}\n",
-        "joints.pin.friction", "contact 'tip' acts on the same mechanism as joint 'pin'");
   check(slide + "drivers:\n  - {name: push, type: joint_distance, joint: pin, function: {polynomial: [0, 0.1]}}\n"
                 "solver: {scheme: rk4-projected}\n",
         "joints.pin.friction", "a driven joint does not slip");

@@ -439,9 +439,8 @@ std::vector<ContactPlan> contact_plans(const Model& model, const Analysis& a) {
 // Joint friction in the absolute-coordinate schemes (docs/friction.md):
 // its impulses need S factorized at the step's end, which staggered-nps and
 // ali3p do not keep; staggered4's middle substep runs backwards, where
-// dissipation cannot; a joint a driver turns does not slip; friction and
-// contacts in one mechanism are not solved together.
-static void check_absolute_friction(const Model& model, const Analysis& a) {
+// dissipation cannot; a joint a driver turns does not slip.
+static void check_absolute_friction(const Model& model) {
   const mbrt::Scheme scheme = model.solver.scheme;
   if (mbrt::joint_space(scheme)) return;
   for (const Joint& j : model.joints) {
@@ -463,14 +462,6 @@ static void check_absolute_friction(const Model& model, const Analysis& a) {
         throw ModelError(j.where, key,
                          "joint '" + j.name + "' is driven by '" + d.name + "': a driven joint does not slip, so its friction "
                          "does nothing (docs/friction.md)");
-      }
-    }
-    const int body = j.body2 != kGround ? j.body2 : j.body1;
-    for (const ContactPlan& c : a.contacts) {
-      if (c.mechanism == a.mechanism[static_cast<size_t>(body)]) {
-        throw ModelError(j.where, key,
-                         "contact '" + model.contacts[static_cast<size_t>(c.model_index)].name + "' acts on the same mechanism as joint '" +
-                             j.name + "': contacts and joint friction in one mechanism are not supported yet (docs/friction.md)");
       }
     }
   }
@@ -630,7 +621,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   }
   a.mechanism = mechanisms(model, a.constraints);
   a.contacts = contact_plans(model, a);
-  check_absolute_friction(model, a);
+  check_absolute_friction(model);
   if (mbrt::joint_space(model.solver.scheme)) {
     a.tree_frames = plan_tree_frames(model, a.constraints);
     if (!a.tree_frames.refusal.empty()) {

@@ -61,9 +61,13 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<d
   Eigen::Matrix<double, n, 1> p = Eigen::Matrix<double, n, 1>::Zero(), u0 = Eigen::Matrix<double, n, 1>::Zero();
   for (int l = 0; l < used; ++l) {
     const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
+    // The tangential block's inverse, shifted by 1e-10 of its trace as the
+    // exact solves are (least_norm_solve): a joint that locks a tangent (a
+    // pinned rod's tip along the rod) leaves the block singular.
     const Mat3 d = k.template block<3, 3>(3 * l, 3 * l);
-    const double det = d(1, 1) * d(2, 2) - d(1, 2) * d(2, 1);
-    tangent_inverse[static_cast<std::size_t>(l)] << d(2, 2) / det, -d(1, 2) / det, -d(2, 1) / det, d(1, 1) / det;
+    const double shift = 1e-10 * (d(1, 1) + d(2, 2)) + 1e-300;
+    const double det = (d(1, 1) + shift) * (d(2, 2) + shift) - d(1, 2) * d(2, 1);
+    tangent_inverse[static_cast<std::size_t>(l)] << (d(2, 2) + shift) / det, -d(1, 2) / det, -d(2, 1) / det, (d(1, 1) + shift) / det;
     limit_factor[static_cast<std::size_t>(l)] = problem.limit_factor[i];
     p.template segment<3>(3 * l) = problem.active[i] * h *
                                    Vec3(last.normal[i], data[i].tangent1.dot(last.tangential[i]), data[i].tangent2.dot(last.tangential[i]));
@@ -90,7 +94,7 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<d
       Vec3 u = u0.template segment<3>(3 * l) + k.template middleRows<3>(3 * l) * p;  // its velocity now
       Vec3 q = old;
       // Normal: the approach speed to its target, pushing only.
-      q[0] = problem.active[i] * positive_part(q[0] - (u[0] - problem.target[i]) / block(0, 0));
+      q[0] = problem.active[i] * positive_part(q[0] - (u[0] - problem.target[i]) / (block(0, 0) * (1.0 + 1e-10) + 1e-300));
       u += block.col(0) * (q[0] - old[0]);
       // Tangential: the impulse that stops the slip, if the friction cone holds it.
       const Eigen::Vector2d trial = q.template tail<2>() - tangent_inverse[static_cast<std::size_t>(l)] * u.template tail<2>();
@@ -139,31 +143,29 @@ void add_joints(const std::array<ContactPoint, N>& data, const ContactProblem<N>
   }
 }
 
-}  // namespace contact_detail
-
-// (positions and velocities after the smooth step; out: the last step's
-// forces and stick states; each contact point's normal velocity at the
-// step's start) => (positions, velocities, out; returns the joints' share
-// of the impulses as forces, z / h, zero without jointed contacts). Per
-// mechanism (M::kContactGroups): the stick trial, else the slide trial,
-// else Gauss-Seidel with M::kContactSweeps sweeps; then every body's
-// velocity change at once, its joints' share included, and h/2 of it on the
-// positions. M::kBounceSpeed: the approach speed below which a contact does
-// not bounce (so a body at rest settles instead of chattering).
+// A step's contact problem: each contact's body, geometry, velocity after
+// the smooth step and what it must reach (contact_trials.hpp), from the
+// contact point's normal velocity at the step's start and the last step's
+// stick states (out). M::kBounceSpeed: the approach speed below which a
+// contact does not bounce (so a body at rest settles instead of chattering).
 template <class M>
-typename M::Rows resolve_contacts(typename M::State& s, const Joints<M>& joints,
-                                  const std::array<double, M::kContacts>& start_normal_velocity) noexcept {
-  constexpr std::size_t N = static_cast<std::size_t>(M::kContacts);
-  constexpr double h = M::kStep;
-  const std::array<ContactPoint, N>& data = M::kContactPoints;
-  const std::array<ContactBody, N> bodies = M::contact_bodies(s);
-  const ContactForces<N> out{s.contact_normal, s.contact_tangential, s.contact_stuck};
+struct ContactSetup {
+  static constexpr std::size_t N = static_cast<std::size_t>(M::kContacts);
+  std::array<ContactBody, N> bodies;
   ContactProblem<N> problem;
+};
+
+template <class M>
+ContactSetup<M> contact_setup(typename M::State& s, const ContactForces<M::kContacts>& out,
+                              const std::array<double, M::kContacts>& start_normal_velocity) noexcept {
+  constexpr std::size_t N = static_cast<std::size_t>(M::kContacts);
+  ContactSetup<M> setup{M::contact_bodies(s), {}};
+  ContactProblem<N>& problem = setup.problem;
   for (std::size_t i = 0; i < N; ++i) {
-    const ContactPoint& c = data[i];
-    problem.frame[i] = contact_detail::frame_of(c, bodies[i]);
+    const ContactPoint& c = M::kContactPoints[i];
+    problem.frame[i] = frame_of(c, setup.bodies[i]);
     problem.active[i] = static_cast<double>(problem.frame[i].gap <= 0.0);
-    const Vec3 u = contact_detail::point_velocity(c, bodies[i], problem.frame[i]);
+    const Vec3 u = point_velocity(c, setup.bodies[i], problem.frame[i]);
     problem.start_velocity[i] = u;
     // A bounce (Newton's law, separation = e approach) at the approach speed
     // averaged over the step, less the smooth loads' half step after it: the
@@ -171,52 +173,75 @@ typename M::Rows resolve_contacts(typename M::State& s, const Joints<M>& joints,
     // end-of-step speed averaged over it, which leaves bounce heights unbiased.
     const double average = 0.5 * (start_normal_velocity[i] + u[0]);
     const double bounce = -c.restitution * average + 0.5 * (u[0] - start_normal_velocity[i]);
-    const double target = static_cast<double>(u[0] < -M::kBounceSpeed) * contact_detail::positive_part(bounce);
+    const double target = static_cast<double>(u[0] < -M::kBounceSpeed) * positive_part(bounce);
     problem.target[i] = target;
     problem.to_reach[i] = Vec3(target, 0.0, 0.0) - u;
     const double was_stuck = static_cast<double>(out.stuck[i] > 0.0);
     problem.limit_factor[i] = was_stuck * c.mu_static + (1.0 - was_stuck) * c.mu_kinetic;
   }
-  // Per mechanism: K, the trials, Gauss-Seidel; its impulses the stick
-  // trial's where it holds, else the slide trial's where that holds, else
-  // Gauss-Seidel's (picked by index: the same work whatever is picked).
-  std::array<Vec3, N> impulse, held, slid, swept;
-  std::array<double, N> stuck, compliance{};
-  std::array<int, N> group_of{};  // each contact's M::kContactGroups index
-  for (std::size_t g = 0; g < M::kContactGroups.size(); ++g) {
-    const auto& group = M::kContactGroups[g];
-    for (int l = 0; l < contact_detail::members(group); ++l) group_of[static_cast<std::size_t>(group[static_cast<std::size_t>(l)])] = static_cast<int>(g);
-    auto k = contact_detail::delassus_matrix(data, problem, group);
-    if constexpr (M::kJointedContacts) {
-      if (data[static_cast<std::size_t>(group[0])].jointed) {
-        contact_detail::add_joints(data, problem, group, static_cast<int>(g), joints, k, compliance);
-      }
-    }
-    for (int r = 0; r < k.rows(); ++r) {  // both triangles, for Gauss-Seidel's rows
-      for (int c = r + 1; c < k.cols(); ++c) k(r, c) = k(c, r);
-    }
-    const bool holds = stick_trial(k, problem, group, held);
-    const bool slides = slide_trial(data, k, problem, group, held, slid);
-    contact_detail::gauss_seidel(data, k, group, h, M::kContactSweeps, problem, held, out, swept, stuck);
-    const int pick = (1 - static_cast<int>(holds)) * (2 - static_cast<int>(slides));  // 0, 1 or 2
-    for (int l = 0; l < contact_detail::members(group); ++l) {
-      const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
-      const std::array<const Vec3*, 3> options{&held[i], &slid[i], &swept[i]};
-      const std::array<double, 3> stuck_options{static_cast<double>(held[i][0] > 0.0) * problem.active[i], 0.0, stuck[i]};
-      impulse[i] = *options[static_cast<std::size_t>(pick)];
-      stuck[i] = stuck_options[static_cast<std::size_t>(pick)];
-    }
-  }
+  return setup;
+}
 
-  // Every body's velocity change at once, with its joints' share; positions
-  // take the impulses as a force constant over the step, h/2 of the velocity
-  // change (a body's rotations from several contacts summed and turned once:
-  // turned one after another they would not commute, and a body held still
-  // would creep).
+// One mechanism's K (M::kContactGroups index g), both triangles, with its
+// joints' share where its bodies are in joints; compliance: see add_joints.
+template <class M, std::size_t G>
+Eigen::Matrix<double, 3 * int(G), 3 * int(G)> group_matrix(const ContactProblem<M::kContacts>& problem,
+                                                            const ContactGroup<G>& group, int g, const Joints<M>& joints,
+                                                            std::array<double, M::kContacts>& compliance) noexcept {
+  auto k = delassus_matrix(M::kContactPoints, problem, group);
+  if constexpr (M::kJointedContacts) {
+    if (M::kContactPoints[static_cast<std::size_t>(group[0])].jointed) add_joints(M::kContactPoints, problem, group, g, joints, k, compliance);
+  }
+  for (int r = 0; r < k.rows(); ++r) {  // both triangles, for Gauss-Seidel's rows
+    for (int c = r + 1; c < k.cols(); ++c) k(r, c) = k(c, r);
+  }
+  return k;
+}
+
+// One mechanism's impulses and stick states: the stick trial's where it
+// holds, else the slide trial's where that holds, else Gauss-Seidel's
+// (picked by index: the same work whatever is picked).
+template <class M, std::size_t G>
+void solve_group(const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k, const ContactProblem<M::kContacts>& problem,
+                 const ContactGroup<G>& group, const ContactForces<M::kContacts>& last,
+                 std::array<Vec3, M::kContacts>& impulse, std::array<double, M::kContacts>& stuck) noexcept {
+  constexpr std::size_t N = static_cast<std::size_t>(M::kContacts);
+  std::array<Vec3, N> held, slid, swept;
+  std::array<double, N> swept_stuck;
+  const bool holds = stick_trial(k, problem, group, held);
+  const bool slides = slide_trial(M::kContactPoints, k, problem, group, held, slid);
+  gauss_seidel(M::kContactPoints, k, group, M::kStep, M::kContactSweeps, problem, held, last, swept, swept_stuck);
+  const int pick = (1 - static_cast<int>(holds)) * (2 - static_cast<int>(slides));  // 0, 1 or 2
+  for (int l = 0; l < members(group); ++l) {
+    const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
+    const std::array<const Vec3*, 3> options{&held[i], &slid[i], &swept[i]};
+    const std::array<double, 3> stuck_options{static_cast<double>(held[i][0] > 0.0) * problem.active[i], 0.0, swept_stuck[i]};
+    impulse[i] = *options[static_cast<std::size_t>(pick)];
+    stuck[i] = stuck_options[static_cast<std::size_t>(pick)];
+  }
+}
+
+// Every body's velocity change at once, with its joints' share; positions
+// take the impulses as a force constant over the step, h/2 of the velocity
+// change (a body's rotations from several contacts summed and turned once:
+// turned one after another they would not commute, and a body held still
+// would creep). Then out, and the penetration an impact left projected out
+// along the normals, pushing only, contact by contact in two passes (a
+// body is rarely left inside the plane at more than two contacts at once; a
+// resting one is not left inside at all); a jointed body's mechanism moves
+// with it. Returns the joints' share of the impulses as forces, z / h.
+template <class M>
+typename M::Rows apply_impulses(typename M::State& s, const Joints<M>& joints, const ContactSetup<M>& setup,
+                                const std::array<Vec3, M::kContacts>& impulse, const std::array<double, M::kContacts>& stuck,
+                                const std::array<double, M::kContacts>& compliance,
+                                const std::array<int, M::kContacts>& group_of, const ContactForces<M::kContacts>& out) noexcept {
+  constexpr std::size_t N = static_cast<std::size_t>(M::kContacts);
+  constexpr double h = M::kStep;
+  const std::array<ContactPoint, N>& data = M::kContactPoints;
   typename M::BodyVectors change;
   for (Vec6& e : change) e.setZero();
   for (std::size_t i = 0; i < N; ++i) {
-    change[static_cast<std::size_t>(data[i].body)] += contact_detail::body_response(data[i], problem.frame[i], impulse[i]);
+    change[static_cast<std::size_t>(data[i].body)] += body_response(data[i], setup.problem.frame[i], impulse[i]);
   }
   typename M::Rows joint_forces = M::Rows::Zero();
   if constexpr (M::kJointedContacts) joint_forces = joints.constrain(change) / h;
@@ -232,29 +257,52 @@ typename M::Rows resolve_contacts(typename M::State& s, const Joints<M>& joints,
     out.tangential[i] = (impulse[i][1] * data[i].tangent1 + impulse[i][2] * data[i].tangent2) / h;
     out.stuck[i] = stuck[i];
   }
-  // Penetration an impact left: projected out along the normals, pushing
-  // only, contact by contact in two passes (a body is rarely left inside the
-  // plane at more than two contacts at once; a resting one is not left
-  // inside at all); a jointed body's mechanism moves with it.
   for (int pass = 0; pass < 2; ++pass) {
     for (std::size_t i = 0; i < N; ++i) {
-      const contact_detail::Frame f = contact_detail::frame_of(data[i], bodies[i]);
+      const Frame f = frame_of(data[i], setup.bodies[i]);
       if constexpr (M::kJointedContacts) {
         if (data[i].jointed) {  // constant per contact: the same work every step
-          const Vec3 push(contact_detail::positive_part(-f.gap / compliance[i]), 0.0, 0.0);
+          const Vec3 push(positive_part(-f.gap / compliance[i]), 0.0, 0.0);
           typename M::BodyVectors shift;
           for (Vec6& e : shift) e.setZero();
-          shift[static_cast<std::size_t>(data[i].body)] = contact_detail::body_response(data[i], f, push);
+          shift[static_cast<std::size_t>(data[i].body)] = body_response(data[i], f, push);
           joints.constrain(shift, group_of[i]);
           M::displace(shift, s);
           continue;
         }
       }
-      const Vec3 push(contact_detail::positive_part(-f.gap / contact_detail::delassus_block(data[i], f)(0, 0)), 0.0, 0.0);
-      contact_detail::displace(data[i], bodies[i], f, push);
+      const Vec3 push(positive_part(-f.gap / delassus_block(data[i], f)(0, 0)), 0.0, 0.0);
+      displace(data[i], setup.bodies[i], f, push);
     }
   }
   return joint_forces;
+}
+
+}  // namespace contact_detail
+
+// (positions and velocities after the smooth step; out: the last step's
+// forces and stick states; each contact point's normal velocity at the
+// step's start) => (positions, velocities, out; returns the joints' share
+// of the impulses as forces, z / h, zero without jointed contacts). Per
+// mechanism (M::kContactGroups): K, then the stick trial, else the slide
+// trial, else Gauss-Seidel with M::kContactSweeps sweeps; then
+// contact_detail::apply_impulses.
+template <class M>
+typename M::Rows resolve_contacts(typename M::State& s, const Joints<M>& joints,
+                                  const std::array<double, M::kContacts>& start_normal_velocity) noexcept {
+  constexpr std::size_t N = static_cast<std::size_t>(M::kContacts);
+  const ContactForces<N> out{s.contact_normal, s.contact_tangential, s.contact_stuck};
+  const contact_detail::ContactSetup<M> setup = contact_detail::contact_setup<M>(s, out, start_normal_velocity);
+  std::array<Vec3, N> impulse;
+  std::array<double, N> stuck, compliance{};
+  std::array<int, N> group_of{};  // each contact's M::kContactGroups index
+  for (std::size_t g = 0; g < M::kContactGroups.size(); ++g) {
+    const auto& group = M::kContactGroups[g];
+    for (int l = 0; l < contact_detail::members(group); ++l) group_of[static_cast<std::size_t>(group[static_cast<std::size_t>(l)])] = static_cast<int>(g);
+    const auto k = contact_detail::group_matrix<M>(setup.problem, group, static_cast<int>(g), joints, compliance);
+    contact_detail::solve_group<M>(k, setup.problem, group, out, impulse, stuck);
+  }
+  return contact_detail::apply_impulses<M>(s, joints, setup, impulse, stuck, compliance, group_of, out);
 }
 
 // Whether a generated model has contacts (it then defines M::kContacts).

@@ -82,55 +82,81 @@ struct FrictionHold {
   std::array<JointRow, M::kFrictionJoints> start;
 };
 
-// (s after the smooth step and its contacts; w.c: S factorized at s;
-// w.last_good: the step's start) => (s with the friction impulses:
-// velocities, h/2 of their change on the positions, s.friction, s.stuck;
-// w.friction_columns: X; hold: for hold_stuck_joints). Returns the joints'
-// share of the impulses as forces, z / h, for the multipliers. A joint at
-// rest at the step's start (stuck, or started at rest) holds up to its
-// static limit, one that breaks loose slides under the kinetic one
-// (friction_detail::solve_breaking_loose). Fixed work, no allocation.
+// A step's joint-friction problem: each joint's row at the step's end and
+// start, the columns X (w.friction_columns, the joints' share taken) with
+// the joints' impulses z per unit friction impulse, K, the joints' rates
+// v0 after the smooth step, which were at rest at the step's start (stuck,
+// or started at rest: they hold up to the static limit), and the limits
+// (impulses, from the multipliers the smooth step ended with).
 template <class M>
-typename M::Rows absolute_joint_friction(typename M::State& s, typename M::Workspace& w, const Joints<M>& joints,
-                                         FrictionHold<M>& hold) noexcept {
+struct FrictionSetup {
+  static constexpr std::size_t n = M::kFrictionJoints;
+  using Values = friction_detail::Values<n>;
+  std::array<JointRow, n> rows, start_rows;
+  std::array<typename M::Rows, n> z;
+  friction_detail::Coupling<n> k;
+  Values v0, at_rest, static_limit, kinetic_limit;
+};
+
+// (s after the smooth step; w.c: S factorized at s; w.last_good: the
+// step's start) => (the setup; w.friction_columns: X).
+template <class M>
+FrictionSetup<M> friction_setup(const typename M::State& s, typename M::Workspace& w, const Joints<M>& joints) noexcept {
   constexpr std::size_t n = M::kFrictionJoints;
   constexpr int nn = static_cast<int>(n);
   constexpr double h = M::kStep;
-  using Values = friction_detail::Values<n>;
-  std::array<JointRow, n> rows, start_rows;
-  M::friction_rows(s, rows);
-  M::friction_rows(w.last_good, start_rows);
+  FrictionSetup<M> f;
+  M::friction_rows(s, f.rows);
+  M::friction_rows(w.last_good, f.start_rows);
   auto& x = w.friction_columns;
-  M::friction_columns(s, rows, x);
-  std::array<typename M::Rows, n> z;  // the joints' impulses per unit friction impulse
-  for (std::size_t c = 0; c < n; ++c) z[c] = joints.constrain(x[c]);
-  friction_detail::Coupling<n> k;
+  M::friction_columns(s, f.rows, x);
+  for (std::size_t c = 0; c < n; ++c) f.z[c] = joints.constrain(x[c]);
   for (int i = 0; i < nn; ++i) {
-    for (int c = 0; c < nn; ++c) k(i, c) = friction_detail::joint_rate<M>(i, rows[static_cast<std::size_t>(i)], x[static_cast<std::size_t>(c)]);
+    for (int c = 0; c < nn; ++c) f.k(i, c) = friction_detail::joint_rate<M>(i, f.rows[static_cast<std::size_t>(i)], x[static_cast<std::size_t>(c)]);
   }
-  k = (0.5 * (k + k.transpose())).eval();  // symmetric but for round-off
+  f.k = (0.5 * (f.k + f.k.transpose())).eval();  // symmetric but for round-off
   const typename M::BodyVectors u = M::generalized_velocities(s);
   const typename M::BodyVectors u0 = M::generalized_velocities(w.last_good);
-  Values load{};
+  friction_detail::Values<n> load{};
   if constexpr (M::kFrictionLoads) M::friction_loads(s, load);
-  Values v0, at_rest, static_limit, kinetic_limit, p;
   for (std::size_t i = 0; i < n; ++i) {
     const int ji = static_cast<int>(i);
-    v0[i] = friction_detail::joint_rate<M>(ji, rows[i], u);
+    f.v0[i] = friction_detail::joint_rate<M>(ji, f.rows[i], u);
     // Bitwise |, not ||: the same instructions whatever the state.
-    at_rest[i] = static_cast<double>((s.stuck[i] == 1.0) | (friction_detail::joint_rate<M>(ji, start_rows[i], u0) == 0.0));
-    static_limit[i] = (M::kFrictionStaticLimit[i] + M::kFrictionStaticPerLoad[i] * load[i]) * h;
-    kinetic_limit[i] = (M::kFrictionLimit[i] + M::kFrictionPerLoad[i] * load[i]) * h;
-    p[i] = s.friction[i] * h;
+    f.at_rest[i] = static_cast<double>((s.stuck[i] == 1.0) | (friction_detail::joint_rate<M>(ji, f.start_rows[i], u0) == 0.0));
+    f.static_limit[i] = (M::kFrictionStaticLimit[i] + M::kFrictionStaticPerLoad[i] * load[i]) * h;
+    f.kinetic_limit[i] = (M::kFrictionLimit[i] + M::kFrictionPerLoad[i] * load[i]) * h;
   }
-  const auto least_norm = [&](const Values& mask, const Values& b) {
-    return friction_detail::solve_masked_least_norm<n>(k, mask, b);
-  };
-  const Values stuck = friction_detail::solve_breaking_loose<n>(k, v0, at_rest, static_limit, kinetic_limit,
-                                                                M::kFrictionSweeps, least_norm, p);
+  return f;
+}
 
-  typename M::BodyVectors change = friction_detail::combine<M>(x, p);
-  typename M::BodyVectors v = u;
+// The impulses p (in: a start, the last step's; out: the result) of the
+// friction joints with rates v0 + K p (friction_detail::solve_breaking_loose,
+// the least-norm stuck solve: K may be singular). Returns the stuck mask.
+template <class M>
+friction_detail::Values<M::kFrictionJoints> solve_joint_friction(const FrictionSetup<M>& f,
+                                                                const friction_detail::Values<M::kFrictionJoints>& v0,
+                                                                friction_detail::Values<M::kFrictionJoints>& p) noexcept {
+  constexpr std::size_t n = M::kFrictionJoints;
+  const auto least_norm = [&](const friction_detail::Values<n>& mask, const friction_detail::Values<n>& b) {
+    return friction_detail::solve_masked_least_norm<n>(f.k, mask, b);
+  };
+  return friction_detail::solve_breaking_loose<n>(f.k, v0, f.at_rest, f.static_limit, f.kinetic_limit, M::kFrictionSweeps,
+                                                  least_norm, p);
+}
+
+// (s; the impulses p and stuck mask) => (s with them: velocities, h/2 of
+// their change on the positions, s.friction, s.stuck; hold: for
+// hold_stuck_joints). Returns the joints' share of the impulses as forces,
+// z / h, for the multipliers.
+template <class M>
+typename M::Rows apply_joint_friction(typename M::State& s, const typename M::Workspace& w, const FrictionSetup<M>& f,
+                                      const friction_detail::Values<M::kFrictionJoints>& p,
+                                      const friction_detail::Values<M::kFrictionJoints>& stuck, FrictionHold<M>& hold) noexcept {
+  constexpr std::size_t n = M::kFrictionJoints;
+  constexpr double h = M::kStep;
+  typename M::BodyVectors change = friction_detail::combine<M>(w.friction_columns, p);
+  typename M::BodyVectors v = M::generalized_velocities(s);
   for (std::size_t b = 0; b < v.size(); ++b) {
     v[b] += change[b];
     change[b] *= 0.5 * h;  // the impulse as a force p / h over the step
@@ -138,15 +164,30 @@ typename M::Rows absolute_joint_friction(typename M::State& s, typename M::Works
   M::set_velocities(v, s);
   M::displace(change, s);
   typename M::Rows joint_forces = M::Rows::Zero();
-  for (std::size_t c = 0; c < n; ++c) joint_forces += (p[c] / h) * z[c];
-  hold.k = k;
+  for (std::size_t c = 0; c < n; ++c) joint_forces += (p[c] / h) * f.z[c];
+  hold.k = f.k;
   for (std::size_t i = 0; i < n; ++i) {
     hold.hold[i] = s.stuck[i] * stuck[i];
-    hold.start[i] = start_rows[i];
+    hold.start[i] = f.start_rows[i];
     s.friction[i] = p[i] / h;
     s.stuck[i] = stuck[i];
   }
   return joint_forces;
+}
+
+// (s after the smooth step and its contacts; w.c: S factorized at s;
+// w.last_good: the step's start) => (s with the friction impulses,
+// apply_joint_friction). A joint at rest at the step's start holds up to
+// its static limit, one that breaks loose slides under the kinetic one.
+// Fixed work, no allocation.
+template <class M>
+typename M::Rows absolute_joint_friction(typename M::State& s, typename M::Workspace& w, const Joints<M>& joints,
+                                         FrictionHold<M>& hold) noexcept {
+  const FrictionSetup<M> f = friction_setup<M>(s, w, joints);
+  friction_detail::Values<M::kFrictionJoints> p;
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = s.friction[i] * M::kStep;
+  const friction_detail::Values<M::kFrictionJoints> stuck = solve_joint_friction<M>(f, f.v0, p);
+  return apply_joint_friction<M>(s, w, f, p, stuck, hold);
 }
 
 // After the scheme has put the positions back on the joints: each joint

@@ -25,6 +25,7 @@
 
 #include "mbrt/contacts.hpp"
 #include "mbrt/scheme.hpp"
+#include "mbrt/schemes/contacts_with_joint_friction.hpp"
 #include "mbrt/schemes/joint_friction_absolute.hpp"
 #include "mbrt/schemes/state_checks.hpp"
 #include "mbrt/step_status.hpp"
@@ -161,14 +162,17 @@ bool impulse_step_with_joints(typename M::State& s, typename M::Workspace& w) no
     M::constraint_rows(w.k, s, w.c);
     positive = factorize_system<M>(s, w.c);
   }
-  typename M::Rows joint_forces = contact_step<M>(w.last_good, s, &w.c);
   [[maybe_unused]] std::conditional_t<(kFrictionJointsOf<M> > 0), FrictionHold<M>, int> hold{};
+  typename M::Rows joint_forces;
   if constexpr (kFrictionJointsOf<M> > 0) {
     // Friction acts on the joints' rates: first B u = 0 to round-off, which
     // staggered-pcst's penalty, baumgarte's and blajer's steps only approach
     // (a stuck joint would keep their residual); rk4-projected has projected.
     if constexpr (M::kScheme != Scheme::rk4_projected) correct_velocities<M>(w.c, s);
-    joint_forces += absolute_joint_friction<M>(s, w, Joints<M>{&w.c}, hold);
+    if constexpr (has_contacts<M>::value) joint_forces = contacts_and_joint_friction<M>(s, w, Joints<M>{&w.c}, hold);
+    else joint_forces = absolute_joint_friction<M>(s, w, Joints<M>{&w.c}, hold);
+  } else {
+    joint_forces = contact_step<M>(w.last_good, s, &w.c);
   }
   M::kinematics(s, w.k);
   M::constraint_rows(w.k, s, w.c);
