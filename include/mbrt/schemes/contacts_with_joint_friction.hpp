@@ -1,7 +1,7 @@
 // Contacts and joint friction in one mechanism (a wheel on a braked hub, a
 // cart with frictional axles; docs/friction.md, "Contacts and joint
-// friction"), solved together after the smooth step. Contact i's velocity
-// changes by K_ci P_i + K_cf p over the contacts' impulses P and the
+// friction together"), solved together after the smooth step. Contact i's
+// velocity changes by K_ci P_i + K_cf p over the contacts' impulses P and the
 // friction joints' impulses p, a joint's rate by K_fc P + K_ff p, where
 // K_cf is a contact point's velocity in the friction columns X (the joints'
 // share taken, joint_friction_absolute.hpp) and K_fc = K_cf^T (the response
