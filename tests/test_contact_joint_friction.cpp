@@ -48,13 +48,13 @@
 #include <type_traits>
 #include <vector>
 
-#include "allocation_counter.hpp"
 #include "arm7_floor_friction_pcst.hpp"
 #include "arm7_floor_friction_rk4p.hpp"
 #include "contact_hub_friction_baumgarte.hpp"
 #include "contact_hub_friction_blajer.hpp"
 #include "contact_hub_friction_pcst.hpp"
 #include "contact_hub_friction_rk4p.hpp"
+#include "step_allocations.hpp"
 
 namespace {
 
@@ -416,16 +416,6 @@ void check_arm_on_floor(const State& start, Step step, EnergyOf energy_of, doubl
   CHECK(ok);
   CHECK(largest_rise <= max_rise);
   CHECK(energy < e0 - 60.0);
-}
-
-// Heap allocations in `steps` steps from the initial state, in one workspace.
-template <class M>
-long allocations_in(int steps) {
-  typename M::State s = M::initial_state();
-  static typename M::Workspace w;
-  AllocationCounter counter;
-  for (int i = 0; i < steps; ++i) REQUIRE(M::step(s, w) == mbrt::StepStatus::ok);
-  return counter.count();
 }
 
 }  // namespace

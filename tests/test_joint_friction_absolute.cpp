@@ -36,7 +36,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "allocation_counter.hpp"
+#include "step_allocations.hpp"
 #include "friction_arm_7_pcst.hpp"
 #include "friction_belt_baumgarte.hpp"
 #include "friction_belt_blajer.hpp"
@@ -538,20 +538,6 @@ TEST_CASE("stress: friction in every joint of a 7-link spatial arm in staggered-
     CHECK(s.rigid[b].w.norm() < 1e-9);
   }
 }
-
-namespace {
-
-// Heap allocations in `steps` steps from the initial state, in one workspace.
-template <class M>
-long allocations_in(int steps) {
-  typename M::State s = M::initial_state();
-  static typename M::Workspace w;
-  AllocationCounter counter;
-  for (int i = 0; i < steps; ++i) REQUIRE(M::step(s, w) == mbrt::StepStatus::ok);
-  return counter.count();
-}
-
-}  // namespace
 
 TEST_CASE("the friction step allocates nothing in the absolute-coordinate schemes, stuck or slipping") {
   // The pendulum swings, turns and sticks in 6000 steps.

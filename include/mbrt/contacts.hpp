@@ -99,7 +99,8 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<d
       // Tangential: the impulse that stops the slip, if the friction cone holds it.
       const Eigen::Vector2d trial = q.template tail<2>() - tangent_inverse[static_cast<std::size_t>(l)] * u.template tail<2>();
       const double limit = limit_factor[static_cast<std::size_t>(l)] * q[0];
-      const double sticks = static_cast<double>(trial.norm() <= limit);
+      const bool holds = trial.norm() <= limit;
+      const double sticks = static_cast<double>(holds);
       // Both candidates computed and blended by 0/1 weights, not picked by a
       // branch: the same instructions whatever sticks or slides.
       const Eigen::Vector2d against_slip = -u.template tail<2>();
@@ -107,7 +108,9 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<d
       const Eigen::Vector2d slip = by_slip * against_slip + (1.0 - by_slip) * trial;
       const Eigen::Vector2d at_limit = limit / at_least(slip.norm(), 1e-300) * slip;
       q.template tail<2>() = sticks * trial + (1.0 - sticks) * at_limit;
-      stuck[i] = sticks * static_cast<double>(q[0] > 0.0);
+      // From the two conditions' bits, not `sticks * (q[0] > 0)`, which the
+      // compiler may turn into a branch (sticks is 0 or 1).
+      stuck[i] = static_cast<double>(holds & (q[0] > 0.0));
       p.template segment<3>(3 * l) = q;
     }
   }
@@ -154,6 +157,20 @@ struct ContactSetup {
   std::array<ContactBody, N> bodies;
   ContactProblem<N> problem;
 };
+
+// Each contact's normal velocity at the step's start (its restitution's
+// reference), from the start's bodies.
+template <class M>
+std::array<double, M::kContacts> start_normal_velocities(typename M::State& start) noexcept {
+  constexpr std::size_t n = static_cast<std::size_t>(M::kContacts);
+  const std::array<ContactBody, n> before = M::contact_bodies(start);
+  std::array<double, n> velocity;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Frame f = frame_of(M::kContactPoints[i], before[i]);
+    velocity[i] = point_velocity(M::kContactPoints[i], before[i], f)[0];
+  }
+  return velocity;
+}
 
 template <class M>
 ContactSetup<M> contact_setup(typename M::State& s, const ContactForces<M::kContacts>& out,
@@ -328,14 +345,7 @@ template <class M>
 typename M::Rows contact_step(typename M::State& start, typename M::State& s,
                               const typename M::ConstraintSystem* c = nullptr) noexcept {
   if constexpr (has_contacts<M>::value) {
-    constexpr std::size_t n = static_cast<std::size_t>(M::kContacts);
-    const std::array<ContactBody, n> before = M::contact_bodies(start);
-    std::array<double, n> start_normal_velocity;
-    for (std::size_t i = 0; i < n; ++i) {
-      const contact_detail::Frame f = contact_detail::frame_of(M::kContactPoints[i], before[i]);
-      start_normal_velocity[i] = contact_detail::point_velocity(M::kContactPoints[i], before[i], f)[0];
-    }
-    return resolve_contacts<M>(s, Joints<M>{c}, start_normal_velocity);
+    return resolve_contacts<M>(s, Joints<M>{c}, contact_detail::start_normal_velocities<M>(start));
   } else {
     (void)start, (void)s, (void)c;
     return M::Rows::Zero();

@@ -98,14 +98,9 @@ typename M::Rows contacts_and_joint_friction(typename M::State& s, typename M::W
   using GroupMatrix = Eigen::Matrix<double, kRows, kRows>;
   const std::array<ContactPoint, N>& data = M::kContactPoints;
 
-  const std::array<ContactBody, N> before = M::contact_bodies(w.last_good);
-  std::array<double, N> start_normal_velocity;
-  for (std::size_t i = 0; i < N; ++i) {
-    const contact_detail::Frame f = contact_detail::frame_of(data[i], before[i]);
-    start_normal_velocity[i] = contact_detail::point_velocity(data[i], before[i], f)[0];
-  }
   const ContactForces<N> out{s.contact_normal, s.contact_tangential, s.contact_stuck};
-  const contact_detail::ContactSetup<M> setup = contact_detail::contact_setup<M>(s, out, start_normal_velocity);
+  const contact_detail::ContactSetup<M> setup =
+      contact_detail::contact_setup<M>(s, out, contact_detail::start_normal_velocities<M>(w.last_good));
   const FrictionSetup<M> f = friction_setup<M>(s, w, joints);
 
   std::array<std::array<Vec3, n>, N> kcf;  // K_cf: contact i's velocity per unit impulse in joint c
@@ -135,9 +130,11 @@ typename M::Rows contacts_and_joint_friction(typename M::State& s, typename M::W
   for (std::size_t c = 0; c < n; ++c) p[c] = s.friction[c] * h;
 
   // The contacts' impulses with the joints the mask calls stuck rigid and
-  // the others' impulses p fixed.
-  const auto solve_contacts = [&](const coupled_detail::FrictionValues<M>& rigid, double shift_k) {
-    const friction_detail::Coupling<n> inverse = coupled_detail::stuck_inverse<M>(f.k, rigid);
+  // the others' impulses p fixed; without hold_stuck no joint is rigid and
+  // the Schur complement's terms, all zero, are not formed.
+  const auto solve_contacts = [&](const coupled_detail::FrictionValues<M>& rigid, bool hold_stuck) {
+    const friction_detail::Coupling<n> inverse =
+        hold_stuck ? coupled_detail::stuck_inverse<M>(f.k, rigid) : friction_detail::Coupling<n>::Zero();
     Eigen::Matrix<double, static_cast<int>(n), 1> sliding, free_rate;
     for (std::size_t c = 0; c < n; ++c) sliding(static_cast<int>(c)) = (1.0 - rigid[c]) * p[c];
     for (std::size_t c = 0; c < n; ++c) free_rate(static_cast<int>(c)) = f.v0[c] + f.k.row(static_cast<int>(c)).dot(sliding);
@@ -149,6 +146,7 @@ typename M::Rows contacts_and_joint_friction(typename M::State& s, typename M::W
       for (std::size_t c = 0; c < n; ++c) {
         shift += kcf[i][c] * joint_impulse(static_cast<int>(c));
         held[i][c].setZero();
+        if (!hold_stuck) continue;
         for (std::size_t d = 0; d < n; ++d) held[i][c] += kcf[i][d] * inverse(static_cast<int>(d), static_cast<int>(c));
       }
       problem.start_velocity[i] += shift;
@@ -158,8 +156,10 @@ typename M::Rows contacts_and_joint_friction(typename M::State& s, typename M::W
       const auto& group = M::kContactGroups[g];
       GroupMatrix kg = k[g];
       const int used = contact_detail::members(group);
-      for (int r = 0; r < kRows; ++r) kg(r, r) += shift_k * k[g](r, r);
-      for (int li = 0; li < used; ++li) {
+      if (hold_stuck) {
+        for (int r = 0; r < kRows; ++r) kg(r, r) += coupled_detail::kRigidShift * k[g](r, r);
+      }
+      for (int li = 0; li < used && hold_stuck; ++li) {
         const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(li)]);
         for (int lj = 0; lj < used; ++lj) {
           const std::size_t j = static_cast<std::size_t>(group[static_cast<std::size_t>(lj)]);
@@ -177,13 +177,13 @@ typename M::Rows contacts_and_joint_friction(typename M::State& s, typename M::W
   };
   for (int pass = 0; pass < coupled_detail::kPasses; ++pass) {
     solve_joints();
-    solve_contacts(joint_stuck, coupled_detail::kRigidShift);
+    solve_contacts(joint_stuck, true);
   }
   solve_joints();
   // Last, the contacts for the joints' impulses as they are, none rigid:
   // whatever the passes left unsettled, the contacts push, never pull, and
   // hold or slide within their cones for the impulses applied.
-  solve_contacts(coupled_detail::FrictionValues<M>{}, 0.0);
+  solve_contacts(coupled_detail::FrictionValues<M>{}, false);
   typename M::Rows joint_forces = apply_joint_friction<M>(s, w, f, p, joint_stuck, hold);
   joint_forces += contact_detail::apply_impulses<M>(s, joints, setup, impulse, contact_stuck, compliance, group_of, out);
   return joint_forces;
