@@ -193,7 +193,7 @@ TEST_CASE("sim's options are checked before the model is generated or compiled, 
       {"--every 2.5", "--every: expected an integer, got '2.5'"},
       {"--out /nonexistent_dir/x.csv", "--out: no directory /nonexistent_dir for '/nonexistent_dir/x.csv'"},
       {"--scheme nosuch", "--scheme: expected one of: staggered-pcst, staggered-nps, ali3p, blajer, baumgarte, "
-                          "staggered-tree, midpoint-tree, rk4-tree, rk4-projected, staggered4, got 'nosuch'"},
+                          "staggered-tree, midpoint-tree, rk4-tree, rk4-projected, staggered4, rk8-tree, got 'nosuch'"},
       {"--h -1", "--h: expected a finite step > 0 s"},
       {"--h inf", "--h: expected a finite step > 0 s"},
       {"--euler-updates 0", "--euler-updates: expected an integer >= 1"},

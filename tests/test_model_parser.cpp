@@ -912,7 +912,7 @@ solver:
   scheme: rk4
 )",
                     "solver.scheme", 5,
-                    "expected one of: staggered-pcst, staggered-nps, ali3p, blajer, baumgarte, staggered-tree, midpoint-tree, rk4-tree, rk4-projected, staggered4, got 'rk4'");
+                    "expected one of: staggered-pcst, staggered-nps, ali3p, blajer, baumgarte, staggered-tree, midpoint-tree, rk4-tree, rk4-projected, staggered4, rk8-tree, got 'rk4'");
 }
 
 TEST_CASE("a non-positive step and a negative penalty are rejected") {

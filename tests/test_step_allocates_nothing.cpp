@@ -24,6 +24,7 @@
 #include "allocation_counter.hpp"
 #include "arm_7_midpoint.hpp"
 #include "arm_7_rk4.hpp"
+#include "arm_7_rk8.hpp"
 #include "arm_7_tree.hpp"
 #include "four_bar.hpp"
 #include "four_bar_general.hpp"
@@ -71,6 +72,7 @@ TEST_CASE("step() allocates nothing over 1e5 steps") {
   CHECK_NO_ALLOCATION(arm_7_tree, 100000);          // staggered-tree
   CHECK_NO_ALLOCATION(arm_7_midpoint, 100000);      // midpoint-tree
   CHECK_NO_ALLOCATION(arm_7_rk4, 100000);           // rk4-tree
+  CHECK_NO_ALLOCATION(arm_7_rk8, 100000);           // rk8-tree
   CHECK_NO_ALLOCATION(four_bar_rk4p, 100000);       // rk4-projected, redundant rows
   CHECK_NO_ALLOCATION(actuated_rk4p, 100000);       // rk4-projected with inputs
   CHECK_NO_ALLOCATION(four_bar_s4, 100000);         // staggered4, redundant rows

@@ -35,7 +35,7 @@ struct Workspace {
   Dofs q0, qd0, qdd0;
   HalfAngles half_angles;
   Dofs rates;
-  Dofs q_sum, qd_sum;
+  std::array<Dofs, 12> stage_rates, stage_accelerations;  // up to rk8-tree's twelve stages
   Kinematics k;
   Loads l;
 };
@@ -70,14 +70,25 @@ struct MidpointPendulum : Pendulum {
   static constexpr int kStages = 3;
 };
 
+// The Runge-Kutta steps take as many recursions as their tableaus' stages.
+struct Rk4Pendulum : Pendulum {
+  static constexpr int kStages = 4;
+};
+struct Rk8Pendulum : Pendulum {
+  static constexpr int kStages = 12;
+};
+
 // rk4-tree's step on the small-angle pendulum, q'' = -(g / L) q, at a step
 // large enough for every term of the method to show.
-struct LinearPendulum : Pendulum {
+struct LinearPendulum : Rk4Pendulum {
   static constexpr double kStep = 0.05;
   static void joint_accelerations(const State& s, const HalfAngles&, const Dofs&, const Kinematics&, const Loads&,
                                   Dofs& qdd) {
     qdd[0] = -(kG / kLength) * s.q[0];
   }
+};
+struct LinearPendulum8 : LinearPendulum {
+  static constexpr int kStages = 12;
 };
 
 State start(double angle) {
@@ -197,8 +208,58 @@ TEST_CASE("the rk4 template steps the linear pendulum by the degree-four Taylor 
   CHECK(std::abs(s.t - 200 * h) < 1e-12);
 }
 
+// On y' = A y a Runge-Kutta method's step is y -> R(h A) y, with R built
+// stage by stage from its tableau: K_i = A (I + h sum_j a_ij K_j), R = I + h
+// sum_i b_i K_i. Method: ClassicalRungeKutta4 or DormandPrince8.
+template <class Method>
+Eigen::Matrix2d step_matrix(const Eigen::Matrix2d& A, double h) {
+  std::array<Eigen::Matrix2d, Method::kStages> K;
+  Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+  for (int i = 0; i < Method::kStages; ++i) {
+    Eigen::Matrix2d point = Eigen::Matrix2d::Identity();
+    for (int j = 0; j < i; ++j) point += h * Method::a[i][j] * K[j];
+    K[i] = A * point;
+    R += h * Method::b[i] * K[i];
+  }
+  return R;
+}
+
+// rk8-tree's method is of order eight: R(z) = exp(z) + O(z^9). Here w h =
+// 0.175, so a method of order seven would leave (w h)^8 / 8! = 2e-11 of
+// exp(h A) each step; this one must be within a few (w h)^9 / 9! = 4e-13.
+// The template's 200 steps must give R^N y0 to round-off.
+TEST_CASE("the rk8 template steps the linear pendulum by its tableau's R(h A), which is exp(h A) to order eight") {
+  const double w = std::sqrt(kG / kLength), h = LinearPendulum8::kStep;
+  Eigen::Matrix2d A, flow;
+  A << 0.0, 1.0, -w * w, 0.0;
+  flow << std::cos(w * h), std::sin(w * h) / w, -w * std::sin(w * h), std::cos(w * h);
+  const Eigen::Matrix2d R = step_matrix<mbrt::schemes::DormandPrince8>(A, h);
+  const Eigen::Matrix2d R4 = step_matrix<mbrt::schemes::ClassicalRungeKutta4>(A, h);
+  const double ninth = std::pow(w * h, 9) / 362880.0;
+  MESSAGE("|R - exp(h A)|: " << (R - flow).cwiseAbs().maxCoeff() << " ((w h)^9 / 9! = " << ninth
+                             << "); the classical method's " << (R4 - flow).cwiseAbs().maxCoeff());
+  CHECK((R - flow).cwiseAbs().maxCoeff() < 4.0 * ninth);
+  CHECK((R4 - flow).cwiseAbs().maxCoeff() > 1e3 * ninth);
+  State s = start(0.3);
+  s.qd[0] = 0.7;
+  Eigen::Vector2d y(s.q[0], s.qd[0]);
+  Workspace ws;
+  for (int k = 0; k < 200; ++k) {
+    REQUIRE(mbrt::schemes::tree_rk8_step<LinearPendulum8>(s, ws) == mbrt::StepStatus::ok);
+    y = R * y;
+  }
+  MESSAGE("after 200 steps: q " << s.q[0] << " (R^N: " << y[0] << "), qd " << s.qd[0] << " (" << y[1] << ")");
+  CHECK(std::abs(s.q[0] - y[0]) < 1e-12);
+  CHECK(std::abs(s.qd[0] - y[1]) < 1e-12);
+  CHECK(std::abs(s.t - 200 * h) < 1e-12);
+}
+
 TEST_CASE("the rk4 template restores the joint coordinates and the bodies after a non-finite step") {
-  check_restored(&mbrt::schemes::tree_rk4_step<Pendulum>, &State::qd);
+  check_restored(&mbrt::schemes::tree_rk4_step<Rk4Pendulum>, &State::qd);
+}
+
+TEST_CASE("the rk8 template restores the joint coordinates and the bodies after a non-finite step") {
+  check_restored(&mbrt::schemes::tree_rk8_step<Rk8Pendulum>, &State::qd);
 }
 
 TEST_CASE("the midpoint template restores the joint coordinates and the bodies after a non-finite step") {

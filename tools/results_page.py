@@ -152,6 +152,7 @@ def work_precision(out):
         image(out, "work_precision_%s.png" % p, p + " work-precision")
     work_precision_trees(out)
     work_precision_spatial(out)
+    work_precision_rk8(out)
     tree_costs(out)
     a01_high_precision(out)
 
@@ -195,6 +196,26 @@ def work_precision_spatial(out):
     against_pcst(out, data, "staggered-tree")
     for p in problems:
         image(out, "work_precision_spatial_%s.png" % p, p + " work-precision, spatial trees")
+
+
+def work_precision_rk8(out):
+    """timing/work_precision's run of rk8-tree and rk4-tree on the spatial trees, beside the peers."""
+    paragraph(out, "### Eighth order on the spatial trees: rk8-tree and rk4-tree in one run")
+    data = measured(out, "work_precision_rk8", "timing/work_precision 5 arm_6,arm_7,humanoid_30,spatial_chain_16 "
+                    "rk4-tree,rk8-tree work_precision_rk8")
+    if data is None:
+        return
+    paragraph(out,
+        "The same problems, references and peers as above; rk8-tree (docs/staggered-tree.md, \"rk8-tree\") at "
+        "32 times the others' steps. Each mbrt run's time over MuJoCo's faster integrator at the same error "
+        "(the goal for the arm class at 1e-6 m: at most 0.1; - where MuJoCo's curves do not reach that error). "
+        "Full table: [work_precision_rk8.txt](%swork_precision_rk8.txt)." % LINK)
+    runs = [r for r in data if r["engine"] == "mbrt"]
+    table(out, ["problem", "scheme", "h", "error (m)", "ns per step", "time ratio to MuJoCo"],
+          [[r["problem"], r["method"], g(r["h"]), g(r["max_error"], 2) + (" (failed)" if r["failed"] != "0" else ""),
+            g(r["ns_per_step"]), g(r["time_ratio_to_mujoco"]) or "-"] for r in runs])
+    for p in sorted({r["problem"] for r in data}):
+        image(out, "work_precision_rk8_%s.png" % p, p + " work-precision, rk8-tree and rk4-tree")
 
 
 def a01_high_precision(out):

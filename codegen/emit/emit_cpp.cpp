@@ -113,7 +113,7 @@ std::vector<StateField> Emitter::state_fields() const {
   std::string acceleration_comment = "  // Accelerations at t, reused by the next step's explicit stage.\n";
   if (tree_scheme()) {
     const std::string qdd = scheme_kind() == Scheme::midpoint_tree ? "\n  // (qdd at the last step's midpoint)"
-                            : scheme_kind() == Scheme::rk4_tree    ? "\n  // (qdd from the last step's fourth stage)"
+                            : runge_kutta_tree()                     ? "\n  // (qdd from the last step's last stage)"
                                                                    : "";
     f.push_back({"  // The joint coordinates (rad or m from t = 0), their rates and accelerations" + qdd +
                      ":\n  // what step() advances; rigid holds the bodies they put where.\n  Dofs q, qd, qdd;\n",
@@ -206,6 +206,7 @@ void Emitter::constants(std::ostringstream& o) const {
     case Scheme::staggered_tree:
     case Scheme::midpoint_tree:
     case Scheme::rk4_tree:
+    case Scheme::rk8_tree:
       break;  // in struct Model; ali3p's are per row
   }
   if (a_.gravity) gravity_constant(o);
@@ -283,7 +284,9 @@ void Emitter::workspace_struct(std::ostringstream& o) const {
     o << "  double t0;\n  Dofs q0, qd0, qdd0;  // the joint coordinates at t, restored when a step fails\n"
       << "  HalfAngles half_angles;  // of s.q\n"
       << "  Dofs rates;              // the rates the recursion runs at\n"
-      << (scheme_kind() == Scheme::rk4_tree ? "  Dofs q_sum, qd_sum;      // the stages' weighted rates and accelerations\n" : "")
+      << (runge_kutta_tree() ? "  std::array<Dofs, " + std::to_string(stages()) +
+                                   "> stage_rates, stage_accelerations;  // each stage's slopes\n"
+                             : "")
       << (friction_joints().empty() ? "" : "  FrictionColumns friction_columns;  // M^-1's columns of the friction joints\n")
       << "  detail::Kinematics k;    // where loads other than gravity need the bodies\n"
       << "  detail::Loads l;\n"
@@ -366,11 +369,12 @@ void Emitter::model_members(std::ostringstream& o) const {
     case Scheme::staggered_tree:
     case Scheme::midpoint_tree:
     case Scheme::rk4_tree:
+    case Scheme::rk8_tree:
       o << "using Dofs = mbrt::models::" << m_.name << "::Dofs;\n"
         << "using HalfAngles = mbrt::models::" << m_.name << "::HalfAngles;\n"
         << "static constexpr int kStages = " << stages() << ";  // recursions per step"
         << (scheme_kind() == Scheme::midpoint_tree ? " (fixed-point iterations)"
-            : scheme_kind() == Scheme::rk4_tree    ? " (Runge-Kutta stages)"
+            : runge_kutta_tree()                     ? " (Runge-Kutta stages)"
                                                    : "")
         << "\n"
         << "static constexpr bool kExternalLoads = " << (tree_external_loads() ? "true" : "false")

@@ -21,6 +21,7 @@ std::string Emitter::stabilization_term() const {
     case Scheme::staggered_tree:
     case Scheme::midpoint_tree:
     case Scheme::rk4_tree:
+    case Scheme::rk8_tree:
     case Scheme::ali3p: return "";
   }
   return "";
@@ -82,6 +83,7 @@ void Emitter::staggered_stages(std::ostringstream& o) const {
     case Scheme::staggered_tree:
     case Scheme::midpoint_tree:
     case Scheme::rk4_tree:
+    case Scheme::rk8_tree:
     case Scheme::ali3p: break;
     case Scheme::baumgarte:
       o << R"(// (c, l, phi, s) => (s.lambda, accelerations): index-1 multipliers with

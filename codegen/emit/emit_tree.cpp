@@ -216,9 +216,14 @@ std::vector<Expr> Emitter::tree_recursion(const TreeRecursionTerms& terms) const
 
 bool Emitter::tree_scheme() const { return mbrt::joint_space(scheme_kind()); }
 
+bool Emitter::runge_kutta_tree() const {
+  return scheme_kind() == Scheme::rk4_tree || scheme_kind() == Scheme::rk8_tree;
+}
+
 std::string Emitter::tree_step_name() const {
   if (scheme_kind() == Scheme::midpoint_tree) return "tree_midpoint_step";
   if (scheme_kind() == Scheme::rk4_tree) return "tree_rk4_step";
+  if (scheme_kind() == Scheme::rk8_tree) return "tree_rk8_step";
   return "tree_step";
 }
 

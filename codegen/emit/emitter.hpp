@@ -301,6 +301,7 @@ class Emitter {
   void staggered_stages(std::ostringstream& o) const;
   // staggered-tree (emit_tree.cpp)
   bool tree_scheme() const;
+  bool runge_kutta_tree() const;  // rk4-tree or rk8-tree: the stages' slopes in the Workspace
   std::string tree_step_name() const;  // the template in include/mbrt/schemes/tree.hpp
   std::string step_function() const;   // the step's template in include/mbrt/schemes/
   std::string step_header() const;     // and its header there

@@ -318,7 +318,7 @@ void check_parameters(const Model& model, const std::vector<Parameter>& params) 
     if (tree && body_state(p)) {
       why = "the tree schemes start from joint coordinates: mark JOINT.coordinate and JOINT.rate instead";
     } else if (!tree && joint_state) {
-      why = "joint coordinates are the initial state of the tree schemes (staggered-tree, midpoint-tree, rk4-tree); "
+      why = "joint coordinates are the initial state of the tree schemes (staggered-tree, midpoint-tree, rk4-tree, rk8-tree); "
             "in absolute coordinates mark BODY.position and BODY.velocity instead";
     }
     if (why.empty()) continue;
@@ -347,6 +347,7 @@ StepPlan plan_step(const Model& model, const Analysis& a, const std::vector<Para
   // 1 kHz; two let it wander to 8 % (docs/staggered-tree.md, "midpoint-tree").
   if (p.scheme == mbrt::Scheme::midpoint_tree) p.stages = 3;
   if (p.scheme == mbrt::Scheme::rk4_tree || p.scheme == mbrt::Scheme::rk4_projected) p.stages = 4;  // the classical Runge-Kutta method's four
+  if (p.scheme == mbrt::Scheme::rk8_tree) p.stages = 12;  // Dormand and Prince's method of order eight
   return p;
 }
 
@@ -449,7 +450,7 @@ static void check_absolute_friction(const Model& model) {
     if (scheme == mbrt::Scheme::staggered_nps || scheme == mbrt::Scheme::ali3p) {
       throw ModelError(j.where, key,
                        "joint friction needs staggered-pcst, baumgarte, blajer, rk4-projected or a tree scheme "
-                       "(rk4-tree, midpoint-tree, staggered-tree); the scheme is " +
+                       "(rk4-tree, rk8-tree, midpoint-tree, staggered-tree); the scheme is " +
                            std::string(mbrt::scheme_name(scheme)) + ", which does not keep S's factor (docs/friction.md)");
     }
     if (scheme == mbrt::Scheme::staggered4) {

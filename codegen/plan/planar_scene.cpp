@@ -192,6 +192,7 @@ PlanarPlan plan_planar(const Model& model, const Analysis& a) {
     case mbrt::Scheme::staggered_tree:
     case mbrt::Scheme::midpoint_tree:
     case mbrt::Scheme::rk4_tree:
+    case mbrt::Scheme::rk8_tree:
     case mbrt::Scheme::rk4_projected:
     case mbrt::Scheme::staggered4:
     case mbrt::Scheme::ali3p:

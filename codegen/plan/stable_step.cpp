@@ -21,6 +21,8 @@ namespace {
 // (staggered-nps, baumgarte, blajer) lose a fast pivoted body at about 0.1;
 // ali3p stays finite but dissipates beyond about 0.3. staggered4's longest
 // substep is 1.70 h (its middle one, backwards): staggered-pcst's 0.7 / 1.70.
+// rk8-tree keeps the arm's tool spinning at 1000 rad/s within 0.16 % of its
+// energy over 20 s at 3 rad per step, 0.43 % at 4 and 1.4 % at 5.
 double rotation_per_step(mbrt::Scheme scheme) {
   switch (scheme) {
     case mbrt::Scheme::staggered4: return 0.7 / 1.70241438391931549;
@@ -28,6 +30,7 @@ double rotation_per_step(mbrt::Scheme scheme) {
     case mbrt::Scheme::staggered_tree:
     case mbrt::Scheme::midpoint_tree:
     case mbrt::Scheme::rk4_tree: return 0.7;
+    case mbrt::Scheme::rk8_tree: return 3.0;
     case mbrt::Scheme::ali3p:
     case mbrt::Scheme::rk4_projected: return 0.3;
     case mbrt::Scheme::staggered_nps:

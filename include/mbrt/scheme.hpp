@@ -18,18 +18,20 @@ enum class Scheme {
   rk4_tree,        // docs/staggered-tree.md, "rk4-tree"
   rk4_projected,   // docs/schemes.md, "rk4-projected"
   staggered4,      // docs/schemes.md, "staggered4"
+  rk8_tree,        // docs/staggered-tree.md, "rk8-tree"
 };
 
 // The names the model file and the command line use, one per Scheme in order.
-inline constexpr std::array<std::string_view, 10> kSchemeNames{
-    "staggered-pcst", "staggered-nps", "ali3p",    "blajer",        "baumgarte",
-    "staggered-tree", "midpoint-tree", "rk4-tree", "rk4-projected", "staggered4"};
+inline constexpr std::array<std::string_view, 11> kSchemeNames{
+    "staggered-pcst", "staggered-nps", "ali3p",    "blajer",        "baumgarte", "staggered-tree",
+    "midpoint-tree",  "rk4-tree",      "rk4-projected", "staggered4", "rk8-tree"};
 
 inline constexpr std::string_view scheme_name(Scheme s) noexcept { return kSchemeNames[static_cast<int>(s)]; }
 
 // The schemes whose state is a tree's joint coordinates (include/mbrt/schemes/tree.hpp).
 inline constexpr bool joint_space(Scheme s) noexcept {
-  return s == Scheme::staggered_tree || s == Scheme::midpoint_tree || s == Scheme::rk4_tree;
+  return s == Scheme::staggered_tree || s == Scheme::midpoint_tree || s == Scheme::rk4_tree ||
+         s == Scheme::rk8_tree;
 }
 
 // The schemes whose steps are staggered-pcst's (staggered4 composes three of

@@ -10,11 +10,14 @@
 //
 // tree_midpoint_step (midpoint-tree) takes the same model through the
 // implicit midpoint rule instead, for energy at 1 kHz on trees of many links,
-// and tree_rk4_step (rk4-tree) through the classical fourth-order
-// Runge-Kutta method, for high precision at large steps.
+// and tree_rk4_step (rk4-tree) and tree_rk8_step (rk8-tree) through explicit
+// Runge-Kutta methods of order four and eight, for high precision at large
+// steps.
 //
 // M is a generated model (struct Model in the model's source). It provides
-//   types     State (t, q, qd, qdd, rigid, ...), Workspace, Dofs, HalfAngles;
+//   types     State (t, q, qd, qdd, rigid, ...), Workspace (with
+//             stage_rates and stage_accelerations, kStages Dofs each, for
+//             the Runge-Kutta steps), Dofs, HalfAngles;
 //   constants kStep, kStages (recursions per step), kExternalLoads;
 //   kernels   half_angles, body_states, kinematics, tree_loads,
 //             joint_accelerations;
@@ -23,11 +26,14 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
+#include <utility>
 
 #include "mbrt/mul_add.hpp"
 #include "mbrt/scheme.hpp"
 #include "mbrt/body_state.hpp"
 #include "mbrt/schemes/joint_friction.hpp"
+#include "mbrt/schemes/runge_kutta_tableaus.hpp"
 #include "mbrt/step_status.hpp"
 
 namespace mbrt::schemes {
@@ -148,47 +154,86 @@ StepStatus tree_midpoint_step(typename M::State& s, typename M::Workspace& w) no
   return tree_step_end<M>(s, w);
 }
 
-// The classical Runge-Kutta method of order four (Hairer, Norsett & Wanner
-// 1993, "Solving Ordinary Differential Equations I", table II.1.2, right) on
-// the joint coordinates and their rates, y = (q, qd), y' = (qd, qdd(q, qd, t)):
-// four recursions a step at (t, y), (t + h/2, y + h/2 k1), (t + h/2,
-// y + h/2 k2), (t + h, y + h k3), and y(t + h) = y + h/6 (k1 + 2 k2 + 2 k3
-// + k4). Explicit, so nothing carries over between steps; s.qdd keeps the
-// fourth stage's accelerations. Its error falls 16 times per halving of h;
-// it is not symplectic, but at the steps it is run at its energy error is
-// of the order of its position error (docs/staggered-tree.md, "rk4-tree").
+namespace tree_detail {
+
+// sum += h coefficient k[i], left out where the coefficient is zero.
+template <class M, double kCoefficient, class Slope>
+void add_slope(double& sum, const Slope& k, std::size_t i) noexcept {
+  if constexpr (kCoefficient != 0.0) sum = mul_add(M::kStep * kCoefficient, k[i], sum);
+}
+
+// start + sum_{j<Row} h a_{Row j} k_j[i].
+template <class M, class Tableau, int Row, class Slopes, std::size_t... J>
+double stage_point(double start, [[maybe_unused]] const Slopes& k, [[maybe_unused]] std::size_t i,
+                   std::index_sequence<J...>) noexcept {
+  (add_slope<M, Tableau::a[Row][J]>(start, k[J], i), ...);
+  return start;
+}
+
+// start + sum_j h b_j k_j[i].
+template <class M, class Tableau, class Slopes, std::size_t... J>
+double step_end(double start, const Slopes& k, std::size_t i, std::index_sequence<J...>) noexcept {
+  (add_slope<M, Tableau::b[J]>(start, k[J], i), ...);
+  return start;
+}
+
+// Stage Row: the joint coordinates and rates at its point, one recursion
+// there, its slopes kept in w.stage_rates[Row] and w.stage_accelerations[Row].
+template <class M, class Tableau, int Row>
+void runge_kutta_stage(typename M::State& s, typename M::Workspace& w) noexcept {
+  constexpr auto earlier = std::make_index_sequence<Row>{};
+  for (std::size_t i = 0; i < s.q.size(); ++i) {
+    s.q[i] = stage_point<M, Tableau, Row>(w.q0[i], w.stage_rates, i, earlier);
+    w.rates[i] = stage_point<M, Tableau, Row>(w.qd0[i], w.stage_accelerations, i, earlier);
+  }
+  s.t = w.t0 + Tableau::c[Row] * M::kStep;
+  tree_accelerations<M>(s, w);
+  w.stage_rates[Row] = w.rates;
+  w.stage_accelerations[Row] = s.qdd;
+}
+
+template <class M, class Tableau, std::size_t... Row>
+void runge_kutta_stages(typename M::State& s, typename M::Workspace& w, std::index_sequence<Row...>) noexcept {
+  (runge_kutta_stage<M, Tableau, static_cast<int>(Row)>(s, w), ...);
+}
+
+}  // namespace tree_detail
+
+// An explicit Runge-Kutta method (runge_kutta_tableaus.hpp) on the joint
+// coordinates and their rates, y = (q, qd), y' = (qd, qdd(q, qd, t)): one
+// recursion a stage, y(t + h) = y + h sum_i b_i k_i. rk4-tree steps by the
+// classical method of order four, rk8-tree by Dormand and Prince's of order
+// eight. Explicit, so nothing carries over between steps; s.qdd keeps the
+// last stage's accelerations. Not symplectic, but at the steps it is run at
+// its energy error is of the order of its position error
+// (docs/staggered-tree.md, "rk4-tree" and "rk8-tree").
 // (s) => (s at t + h). Allocates nothing, throws nothing, fixed work; on a
 // non-finite result s keeps its old value.
-template <class M>
-StepStatus tree_rk4_step(typename M::State& s, typename M::Workspace& w) noexcept {
-  constexpr double h = M::kStep;
-  constexpr double kAdvance[4] = {0.0, 0.5 * h, 0.5 * h, h};  // each stage's point from the last stage's slope
-  constexpr double kWeight[4] = {h / 6.0, h / 3.0, h / 3.0, h / 6.0};
+template <class M, class Tableau>
+StepStatus tree_runge_kutta_step(typename M::State& s, typename M::Workspace& w) noexcept {
+  constexpr auto stages = std::make_index_sequence<Tableau::kStages>{};
+  static_assert(M::kStages == Tableau::kStages, "the generated model's stages are the tableau's");
   tree_step_begin<M>(s, w);
-  w.rates = w.qd0;
-  for (int stage = 0; stage < 4; ++stage) {
-    if (stage > 0) {
-      for (std::size_t i = 0; i < s.q.size(); ++i) {
-        s.q[i] = w.q0[i] + kAdvance[stage] * w.rates[i];
-        w.rates[i] = w.qd0[i] + kAdvance[stage] * s.qdd[i];
-      }
-    }
-    s.t = w.t0 + kAdvance[stage];
-    tree_accelerations<M>(s, w);
-    for (std::size_t i = 0; i < s.q.size(); ++i) {
-      w.q_sum[i] = stage == 0 ? kWeight[0] * w.rates[i] : mul_add(kWeight[stage], w.rates[i], w.q_sum[i]);
-      w.qd_sum[i] = stage == 0 ? kWeight[0] * s.qdd[i] : mul_add(kWeight[stage], s.qdd[i], w.qd_sum[i]);
-    }
-  }
+  tree_detail::runge_kutta_stages<M, Tableau>(s, w, stages);
   for (std::size_t i = 0; i < s.q.size(); ++i) {
-    s.q[i] = w.q0[i] + w.q_sum[i];
-    s.qd[i] = w.qd0[i] + w.qd_sum[i];
+    s.q[i] = tree_detail::step_end<M, Tableau>(w.q0[i], w.stage_rates, i, stages);
+    s.qd[i] = tree_detail::step_end<M, Tableau>(w.qd0[i], w.stage_accelerations, i, stages);
   }
-  s.t = w.t0 + h;
+  s.t = w.t0 + M::kStep;
   M::half_angles(s.q, w.half_angles);
   tree_friction<M>(s, w);
   M::body_states(s.q, w.half_angles, s.qd, s);
   return tree_step_end<M>(s, w);
+}
+
+template <class M>
+StepStatus tree_rk4_step(typename M::State& s, typename M::Workspace& w) noexcept {
+  return tree_runge_kutta_step<M, ClassicalRungeKutta4>(s, w);
+}
+
+template <class M>
+StepStatus tree_rk8_step(typename M::State& s, typename M::Workspace& w) noexcept {
+  return tree_runge_kutta_step<M, DormandPrince8>(s, w);
 }
 
 }  // namespace mbrt::schemes
