@@ -203,6 +203,7 @@ int run(const HilOptions& opt) {
   loop.published_seq.fill(-1);
   stats.workspace_bytes = model::kWorkspaceBytes;
   stats.realtime = prepare_realtime(opt.realtime, &loop.workspace, model::kWorkspaceBytes);
+  model::start_workers();  // the parallel step's threads, before the loop (docs/parallel.md); none for a serial one
 
   const std::int64_t cycles = std::llround(opt.link.duration_s * opt.link.rate_hz);
   PeriodicClock clock(std::llround(1e9 / opt.link.rate_hz));

@@ -257,3 +257,77 @@ TEST_CASE("staggered-tree takes trees of revolute and prismatic joints; armature
   CHECK(std::abs(a.tree_frames.frames[1].r.norm() - 1.5) < 1e-12);
   CHECK(a.tree_frames.frames[1].Ex.cwiseAbs().sum() == 3.0);
 }
+
+namespace {
+
+Model split(Model m, int parts, mbrt::Scheme scheme = mbrt::Scheme::staggered_pcst) {
+  m.solver.scheme = scheme;
+  m.solver.scheme_given = true;
+  m.solver.parallel_parts = parts;
+  return m;
+}
+
+// The parallel step's conditions on the partition and S's factor: blocks of
+// different parts share no moving body, each part's factor column reaches
+// only its own part and the interface, and the parts come before the
+// interface in the elimination order.
+void check_arrowhead(const Analysis& a) {
+  const Partition& p = a.partition;
+  const auto part = [&](int j) { return p.block_part[static_cast<size_t>(j)]; };
+  const int n = static_cast<int>(a.constraints.size());
+  for (int i = 0; i < n; ++i) {
+    for (int k : a.pattern.coupled[static_cast<size_t>(i)]) {
+      if (part(i) < p.parts && part(k) < p.parts) CHECK(part(i) == part(k));
+    }
+    for (int k : a.pattern.lower[static_cast<size_t>(i)]) {
+      if (part(i) < p.parts) CHECK((part(k) == part(i) || part(k) == p.parts));
+      else CHECK(part(k) == p.parts);
+    }
+  }
+  for (size_t q = 1; q < a.pattern.order.size(); ++q) CHECK(part(a.pattern.order[q - 1]) <= part(a.pattern.order[q]));
+}
+
+}  // namespace
+
+TEST_CASE("the parallel step's parts share no moving body and S keeps an arrowhead form") {
+  SUBCASE("an open chain in two parts: one joint between them") {
+    const Analysis a = analyse(split(chain(64, false), 2));
+    REQUIRE(a.partition.parts == 2);
+    CHECK(a.partition.interface_blocks == 1);
+    CHECK(a.partition.part_rows[0] + a.partition.part_rows[1] + a.partition.interface_rows == a.constraint_rows);
+    CHECK(std::abs(a.partition.part_rows[0] - a.partition.part_rows[1]) <= 10);
+    CHECK(a.pattern.fill_blocks == 0);
+    check_arrowhead(a);
+  }
+  SUBCASE("a closed loop in three parts") {
+    const Analysis a = analyse(split(chain(90, true), 3));
+    REQUIRE(a.partition.parts == 3);
+    CHECK(a.partition.interface_blocks <= 4);
+    check_arrowhead(a);
+  }
+}
+
+TEST_CASE("a model too small for its parts keeps the serial step and says why") {
+  const Analysis a = analyse(split(chain(8, false), 2));
+  CHECK(a.partition.parts == 1);
+  CHECK(a.partition.requested == 2);
+  CHECK(a.partition.serial_reason.find("parallel_min_rows") != std::string::npos);
+  Model forced = split(chain(8, false), 2);
+  forced.solver.parallel_min_rows = 0;
+  const Analysis f = analyse(forced);
+  CHECK(f.partition.parts == 2);
+  check_arrowhead(f);
+}
+
+TEST_CASE("the parallel step is refused for the schemes it is not built for") {
+  for (mbrt::Scheme s : {mbrt::Scheme::ali3p, mbrt::Scheme::staggered_nps, mbrt::Scheme::staggered_tree}) {
+    CAPTURE(mbrt::scheme_name(s));
+    try {
+      analyse(split(chain(64, false), 2, s));
+      FAIL("no error");
+    } catch (const ModelError& e) {
+      CHECK(std::string(e.what()).find("solver.parallel_parts") != std::string::npos);
+      CHECK(std::string(e.what()).find("staggered-pcst, baumgarte and blajer") != std::string::npos);
+    }
+  }
+}

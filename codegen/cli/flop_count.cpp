@@ -56,7 +56,7 @@ Executed profile(const std::string& executable, double h, int steps, const fs::p
   const fs::path out = dir / ("callgrind." + std::to_string(steps));
   const std::string cmd = "valgrind --tool=callgrind --dump-instr=yes --dump-line=no --compress-pos=no "
                           "--compress-strings=no --callgrind-out-file=" + shell_quote(out.string()) + " " +
-                          shell_quote(executable) + " --t-end " + t_end + " --every 1000000000 > /dev/null 2>&1";
+                          shell_quote(executable) + " --t-end " + t_end + " --every 1000000000 --serial > /dev/null 2>&1";
   if (std::system(cmd.c_str()) != 0) throw std::runtime_error("valgrind failed (is it installed?): " + cmd);
   return read_profile(out);
 }

@@ -32,6 +32,11 @@ void apply_overrides(Model& model, const GenerateOptions& options) {
   if (options.name) model.name = *options.name;
   if (options.step) model.solver.step = *options.step;
   if (options.euler_updates) model.solver.euler_updates = *options.euler_updates;
+  if (options.parallel_parts) {
+    model.solver.parallel_parts = *options.parallel_parts;
+    model.solver.parallel_parts_where = {model.file, 0, 0};
+  }
+  if (options.parallel_min_rows) model.solver.parallel_min_rows = *options.parallel_min_rows;
   Ali3pSettings& ali3p = model.solver.ali3p;
   if (options.ali3p_projection) ali3p.cuadrado_projection = *options.ali3p_projection == "cuadrado";
   if (options.ali3p_integrator) ali3p.generalized_alpha = *options.ali3p_integrator == "generalized_alpha";
@@ -64,6 +69,9 @@ void check_generate_options(const GenerateOptions& options) {
     bad("--name", "expected a name matching [a-z][a-z0-9_]*, got '" + *options.name + "'");
   if (options.step && !(*options.step > 0.0 && std::isfinite(*options.step))) bad("--h", "expected a finite step > 0 s");
   if (options.euler_updates && *options.euler_updates < 1) bad("--euler-updates", "expected an integer >= 1");
+  if (options.parallel_parts && (*options.parallel_parts < 1 || *options.parallel_parts > 64))
+    bad("--parallel-parts", "expected an integer from 1 to 64");
+  if (options.parallel_min_rows && *options.parallel_min_rows < 0) bad("--parallel-min-rows", "expected an integer >= 0");
   if (options.ali3p_projection && *options.ali3p_projection != "bayo" && *options.ali3p_projection != "cuadrado")
     bad("--ali3p-projection", "expected bayo or cuadrado, got '" + *options.ali3p_projection + "'");
   if (options.ali3p_integrator && *options.ali3p_integrator != "trapezoidal" &&

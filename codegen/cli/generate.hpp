@@ -16,6 +16,8 @@ struct GenerateOptions {
   std::optional<std::string> scheme;
   std::optional<double> step;
   std::optional<int> euler_updates;
+  std::optional<int> parallel_parts;
+  std::optional<int> parallel_min_rows;
   std::optional<std::string> name;  // replaces the model's name (and C++ namespace)
   std::optional<std::string> ali3p_projection;  // bayo | cuadrado
   std::optional<std::string> ali3p_integrator;  // trapezoidal | generalized_alpha

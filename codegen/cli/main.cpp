@@ -63,6 +63,14 @@ void add_generate_options(CLI::App& app, mbrt::codegen::GenerateOptions& gen, st
   app.add_option_function<double>("--euler-updates", [&gen](double k) { gen.euler_updates = static_cast<int>(k); },
                                   "Euler-parameter updates per step, overriding solver.euler_updates")
       ->check(number_check("an integer", [](double k) { return k == std::floor(k) && std::abs(k) < 1e9; }));
+  app.add_option_function<double>("--parallel-parts", [&gen](double k) { gen.parallel_parts = static_cast<int>(k); },
+                                  "subsystems stepped on their own threads, overriding solver.parallel_parts")
+      ->check(number_check("an integer", [](double k) { return k == std::floor(k) && std::abs(k) < 1e9; }));
+  app.add_option_function<double>("--parallel-min-rows",
+                                  [&gen](double k) { gen.parallel_min_rows = static_cast<int>(k); },
+                                  "constraint rows per part below which the step stays serial, overriding "
+                                  "solver.parallel_min_rows (0: always split)")
+      ->check(number_check("an integer", [](double k) { return k == std::floor(k) && std::abs(k) < 1e9; }));
   app.add_flag("--project-initial", gen.project_initial, "project the initial state onto the constraints");
   app.add_flag("--can-fd", gen.can_fd, "the CAN layout in CAN FD frames of up to 64 bytes");
   app.add_option_function<std::string>("--name", [&gen](const std::string& n) { gen.name = n; },
@@ -178,10 +186,12 @@ int run(int argc, char** argv) {
                                                       : "no directory " + dir.string() + " for '" + file + "'";
           },
           "FILE"));
-  for (const char* flag : {"--velocities", "--reactions"}) {
+  for (const char* flag : {"--velocities", "--reactions", "--serial"}) {
+    const std::string f = flag;
     sim_cmd->add_flag_callback(flag, [&sim, flag]() { sim.driver_args.push_back(flag); },
-                               flag == std::string("--velocities") ? "add the velocities to the CSV"
-                                                                   : "add the joints' reactions to the CSV");
+                               f == "--velocities" ? "add the velocities to the CSV"
+                               : f == "--reactions" ? "add the joints' reactions to the CSV"
+                                                    : "run a parallel step's parts on one thread (docs/parallel.md)");
   }
   std::vector<std::string> set;  // --set KEY=VALUE: runtime parameters (docs/parameters.md), checked against the model
   sim_cmd->add_option("--set", set, "set a tunable parameter before the run (repeatable)")

@@ -56,6 +56,7 @@ StepReport report_step(const Generated& g, const SimOptions& options) {
   r.per_step = count_step(executable, g.model.solver.step, kCountedSteps);
   read_calibration(r);
   r.stable = g.stable;
+  r.partition = g.analysis.partition;
   return r;
 }
 
@@ -74,6 +75,13 @@ std::string report_json(const StepReport& r) {
                        {"stiffest_frequency", st.stiffest_frequency},
                        {"stiffest_element", st.stiffest_element},
                        {"note", st.note}};
+  const Partition& p = r.partition;
+  const Json parallel = {{"parts", p.parts},
+                         {"requested", p.requested},
+                         {"part_rows", p.part_rows},
+                         {"interface_blocks", p.interface_blocks},
+                         {"interface_rows", p.interface_rows},
+                         {"serial_reason", p.serial_reason}};
   const Json predicted = r.ns_per_flop ? Json(*r.ns_per_flop * static_cast<double>(r.per_step.flops)) : Json(nullptr);
   const Json j = {{"model", r.model},
                   {"scheme", r.scheme},
@@ -89,7 +97,8 @@ std::string report_json(const StepReport& r) {
                   {"ns_per_flop", r.ns_per_flop ? Json(*r.ns_per_flop) : Json(nullptr)},
                   {"predicted_ns_per_step", predicted},
                   {"calibration", r.calibration},
-                  {"stable_step", stable}};
+                  {"stable_step", stable},
+                  {"parallel", parallel}};
   return j.dump(4);
 }
 

@@ -27,6 +27,7 @@ struct StepReport {
   std::optional<double> ns_per_flop;  // calibration, when timing/results has one
   std::string calibration;            // where it came from, or why there is none
   StableStep stable;
+  Partition partition;  // the parallel step's parts (docs/parallel.md)
 };
 
 // Compiles the model's sim program (cached) and counts one step under valgrind.

@@ -34,7 +34,8 @@ std::string Emitter::header() const {
     << "inline constexpr int kRigidBodies = " << a_.rigid_count << ";\n"
     << "inline constexpr int kParticles = " << a_.particle_count << ";\n"
     << "inline constexpr int kConstraintBlocks = " << blocks() << ";  // joints, then drivers\n"
-    << "inline constexpr int kConstraintRows = " << a_.constraint_rows << ";\n\n"
+    << "inline constexpr int kConstraintRows = " << a_.constraint_rows << ";\n"
+    << "inline constexpr int kParts = " << parts() << ";  // subsystems stepped in parallel (docs/parallel.md)\n\n"
     << "inline constexpr std::array<mbrt::BodyInfo, kBodies> kBodyInfo{{\n";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     o << "    {\"" << m_.bodies[i].name << "\", " << (a_.bodies[i].rigid ? "true" : "false") << ", "
@@ -70,6 +71,7 @@ std::string Emitter::header() const {
     << "mbrt::StepStatus step(State& s, Workspace& w) noexcept;\n"
     << "// The same with a workspace on the stack, for tools and tests.\n"
     << "mbrt::StepStatus step(State& s) noexcept;\n\n"
+    << worker_declarations()
     << (tree_scheme() ? "// (s) => (s.rigid_acceleration, s.lambda): the body accelerations and\n"
                         "// multipliers that go with the joint coordinates.\n"
                         "void set_multipliers(State& s) noexcept;\n\n"
@@ -551,14 +553,15 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
   o << "// (k, s.t, s.params) => (c.*.rows): constraint values, Jacobians and acceleration terms.\n"
     << "static void constraint_rows(const Kinematics& k, [[maybe_unused]] const State& s, ConstraintSystem& c) noexcept {\n";
   if (blocks() == 0) o << "  (void)k;\n  (void)c;\n";
+  std::vector<std::string> part_lines(static_cast<size_t>(parts()));
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& b = block(j);
-    o << "  " << rows_of(j) << " = mbrt::" << b.kernel << "(" << b.name << "_frame, " << motion(b.body1) << ", "
-      << motion(b.body2);
-    if (b.function) o << ",\n      " << driver_function_value(b);
-    o << ");\n";
+    std::string line = "  " + rows_of(j) + " = mbrt::" + b.kernel + "(" + b.name + "_frame, " + motion(b.body1) + ", " +
+                       motion(b.body2);
+    if (b.function) line += ",\n      " + driver_function_value(b);
+    part_lines[static_cast<size_t>(parallel() ? phase_part(j) : 0)] += line + ");\n";
   }
-  o << "}\n\n";
+  o << (parallel() ? parallel_region(part_lines) : part_lines[0]) << "}\n\n";
   if (scheme_kind() != Scheme::staggered_nps) factorization(o);
   OpCount jacobian;
   for (int j = 0; j < blocks(); ++j) {
@@ -570,7 +573,9 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
   o << "// (c, u) => (B u). " << jacobian.text() << ".\n"
     << "static Rows jacobian_times(const ConstraintSystem& c, const BodyVectors& u) noexcept {\n  Rows y;\n";
   if (blocks() == 0) o << "  (void)c;\n  (void)u;\n";
-  o << jacobian_lines(every_block(), "  ") << "  return y;\n}\n\n";
+  o << (parallel() ? parallel_region(per_part_blocks([&](const std::vector<bool>& in) { return jacobian_lines(in, "  "); }, true))
+                   : jacobian_lines(every_block(), "  "))
+    << "  return y;\n}\n\n";
   if (scheme_kind() != Scheme::staggered_nps) {
     OpCount forces;
     for (int j = 0; j < blocks(); ++j) {
@@ -584,7 +589,8 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
       << "static void subtract_constraint_forces(const ConstraintSystem& c, const Rows& lambda, double scale,\n"
       << "                                BodyVectors& u) noexcept {\n";
     if (blocks() == 0) o << "  (void)c;\n  (void)lambda;\n  (void)scale;\n  (void)u;\n";
-    o << constraint_force_lines(every_block(), "  ") << "}\n\n";
+    o << (parallel() ? parallel_region(constraint_force_lines_by_body()) : constraint_force_lines(every_block(), "  "))
+      << "}\n\n";
   }
   o << "// (c) => (phi), (c) => (quad): stacked position residuals and acceleration terms.\n";
   stacked(o, "phi");
@@ -630,13 +636,15 @@ void Emitter::factorization(std::ostringstream& o) const {
   OpCount directions;
   std::ostringstream body;
   if (blocks() == 0) body << "  (void)c;\n";
+  std::vector<std::string> part_lines(static_cast<size_t>(parts()));
   for (int ji = 0; ji < blocks(); ++ji) {
     for (int b : moving_bodies(ji)) {
-      body << "  " << mbt(ji, b) << " = mbrt::inverse_mass_times_transpose(" << mass_of(b) << ", " << rows_of(ji) << "."
-           << side(ji, b) << ");\n";
+      part_lines[static_cast<size_t>(parallel() ? phase_part(ji) : 0)] +=
+          "  " + mbt(ji, b) + " = mbrt::inverse_mass_times_transpose(" + mass_of(b) + ", " + rows_of(ji) + "." + side(ji, b) + ");\n";
       directions += inverse_mass_ops(b, rows(ji));
     }
   }
+  body << (parallel() ? parallel_region(part_lines) : part_lines[0]);
   o << "// (c.*.rows) => (c.*.mbt_*): M^-1 B^T, the directions constraint forces move the bodies in.\n"
     << "// " << directions.text() << ".\n"
     << "static void constraint_directions(" << mass_parameter() << "ConstraintSystem& c) noexcept {\n"
@@ -650,34 +658,37 @@ void Emitter::factorization(std::ostringstream& o) const {
   };
   OpCount factor = directions;
   body.str("");
+  // The parallel step: each part's blocks in its own stream, the interface's in body.
+  std::vector<std::ostringstream> part_body(static_cast<size_t>(parts()));
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
-    body << "  // " << jname(k) << "\n  " << L(k, k) << " = " << s_block(k, k);
+    std::ostringstream& out = parallel() && !interface_block(k) ? part_body[static_cast<size_t>(phase_part(k))] : body;
+    out << "  // " << jname(k) << "\n  " << L(k, k) << " = " << s_block(k, k);
     factor += s_block_ops(k, k);
     factor += ops::sum(rows(k), 1);  // the diagonal shift
-    if (!shifted) body << " + kRegularization * " << block_type(rows(k), rows(k)) << "::Identity()";
+    if (!shifted) out << " + kRegularization * " << block_type(rows(k), rows(k)) << "::Identity()";
     for (size_t pj = 0; pj < pk; ++pj) {
       const int j = order[pj];
       if (!in_lower(j, k)) continue;
-      body << "\n      - " << L(k, j) << " * " << L(k, j) << ".transpose()";
+      out << "\n      - " << L(k, j) << " * " << L(k, j) << ".transpose()";
       factor += ops::product(rows(k), rows(j), rows(k));
       factor += ops::sum(rows(k), rows(k));
     }
-    body << ";\n";
+    out << ";\n";
     if (shifted) body << "  " << L(k, k) << ".diagonal() += " << seg("shift", k) << ";\n";
-    body << "  positive = mbrt::cholesky_in_place(" << L(k, k) << ") && positive;\n";
+    out << "  positive = mbrt::cholesky_in_place(" << L(k, k) << ") && positive;\n";
     factor += ops::cholesky(rows(k));
     for (int i : lower[static_cast<size_t>(k)]) {
-      body << "  " << L(i, k) << " = " << s_block(i, k);
+      out << "  " << L(i, k) << " = " << s_block(i, k);
       factor += s_block_ops(i, k);
       for (size_t pj = 0; pj < pk; ++pj) {
         const int j = order[pj];
         if (!(in_lower(j, k) && in_lower(j, i))) continue;
-        body << "\n      - " << L(i, j) << " * " << L(k, j) << ".transpose()";
+        out << "\n      - " << L(i, j) << " * " << L(k, j) << ".transpose()";
         factor += ops::product(rows(i), rows(j), rows(k));
         factor += ops::sum(rows(i), rows(k));
       }
-      body << ";\n  mbrt::solve_right_lower_transposed(" << L(k, k) << ", " << L(i, k) << ");\n";
+      out << ";\n  mbrt::solve_right_lower_transposed(" << L(k, k) << ", " << L(i, k) << ");\n";
       factor += ops::solve_right_lower_transposed(rows(i), rows(k));
     }
   }
@@ -685,17 +696,64 @@ void Emitter::factorization(std::ostringstream& o) const {
     << "// elimination order (" << a_.pattern.fill_blocks << " fill blocks); false if a pivot is not positive.\n"
     << "// " << factor.text() << ".\n"
     << "static bool factorize(" << mass_parameter() << "ConstraintSystem& c" << (shifted ? ", const Rows& shift" : "")
-    << ") noexcept {\n  bool positive = true;\n  constraint_directions(" << mass_argument() << "c);\n";
+    << ") noexcept {\n";
+  if (parallel()) {
+    // Each part's factor on its own thread, then the interface's: the Schur
+    // complement of the parts, formed from their L(interface, part) blocks.
+    std::vector<std::string> part_lines;
+    for (const auto& p : part_body) part_lines.push_back(p.str());
+    o << "  constraint_directions(" << mass_argument() << "c);\n  std::array<bool, kParts> part_positive{};\n"
+      << parallel_region(part_lines, "  bool positive = true;\n", "  part_positive[static_cast<size_t>(part)] = positive;\n")
+      << "  bool positive = std::all_of(part_positive.begin(), part_positive.end(), [](bool p) { return p; });\n  // the interface\n";
+  } else {
+    o << "  bool positive = true;\n  constraint_directions(" << mass_argument() << "c);\n";
+  }
   if (shifted && blocks() == 0) o << "  (void)shift;\n";
   o << body.str() << "  return positive;\n}\n\n";
 
   OpCount solving;
   body.str("");
   if (blocks() == 0) body << "  (void)c;\n  (void)x;\n";
-  body << solve_lines(every_block(), "  ", &solving);
+  if (parallel()) {
+    // Forward: the parts, then the interface; backward: the interface, then the parts.
+    std::vector<bool> in_interface(static_cast<size_t>(blocks()));
+    for (int j = 0; j < blocks(); ++j) in_interface[static_cast<size_t>(j)] = interface_block(j);
+    const auto forward = per_part_blocks([&](const std::vector<bool>& in) { return solve_sweep_lines(in, "  ", &solving, true); }, false);
+    const auto backward = per_part_blocks([&](const std::vector<bool>& in) { return solve_sweep_lines(in, "  ", &solving, false); }, false);
+    body << parallel_region(forward) << "  // the interface\n" << solve_sweep_lines(in_interface, "  ", &solving, true)
+         << solve_sweep_lines(in_interface, "  ", &solving, false) << parallel_region(backward);
+  } else {
+    body << solve_lines(every_block(), "  ", &solving);
+  }
   o << "// (c.*.L*, x) => (x): x := S^-1 x by forward and backward substitution.\n"
     << "// " << solving.text() << ".\n"
     << "static void solve(const ConstraintSystem& c, Rows& x) noexcept {\n" << body.str() << "}\n\n";
+}
+
+std::vector<std::string> Emitter::per_part_blocks(const std::function<std::string(const std::vector<bool>&)>& lines,
+                                                  bool with_interface) const {
+  std::vector<std::string> out;
+  for (int p = 0; p < parts(); ++p) {
+    std::vector<bool> in(static_cast<size_t>(blocks()));
+    for (int j = 0; j < blocks(); ++j) {
+      in[static_cast<size_t>(j)] = (with_interface || !interface_block(j)) && phase_part(j) == p;
+    }
+    out.push_back(lines(in));
+  }
+  return out;
+}
+
+// Each body's updates in block order, as the serial kernel makes them, in its part.
+std::vector<std::string> Emitter::constraint_force_lines_by_body() const {
+  std::vector<std::string> out(static_cast<size_t>(parts()));
+  for (int b = 0; b < static_cast<int>(m_.bodies.size()); ++b) {
+    for (int ji = 0; ji < blocks(); ++ji) {
+      const auto moving = moving_bodies(ji);
+      if (std::find(moving.begin(), moving.end(), b) == moving.end()) continue;
+      out[static_cast<size_t>(body_part(b))] += "  u" + at(b) + " -= scale * (" + mbt(ji, b) + " * " + seg("lambda", ji) + ");\n";
+    }
+  }
+  return out;
 }
 
 std::vector<bool> Emitter::every_block() const { return std::vector<bool>(static_cast<size_t>(blocks()), true); }
@@ -722,6 +780,11 @@ std::string Emitter::constraint_force_lines(const std::vector<bool>& in, const s
 // Forward and backward substitution with S's factor over the blocks `in`
 // (whole components of S's pattern: no fill crosses between components).
 std::string Emitter::solve_lines(const std::vector<bool>& in, const std::string& indent, OpCount* count) const {
+  return solve_sweep_lines(in, indent, count, true) + solve_sweep_lines(in, indent, count, false);
+}
+
+std::string Emitter::solve_sweep_lines(const std::vector<bool>& in, const std::string& indent, OpCount* count,
+                                       bool forward) const {
   const auto& order = a_.pattern.order;
   const auto& lower = a_.pattern.lower;
   auto in_lower = [&](int j, int i) {
@@ -730,7 +793,7 @@ std::string Emitter::solve_lines(const std::vector<bool>& in, const std::string&
   };
   OpCount solving;
   std::ostringstream body;
-  for (size_t pk = 0; pk < order.size(); ++pk) {
+  for (size_t pk = 0; forward && pk < order.size(); ++pk) {
     const int k = order[pk];
     if (!in[static_cast<size_t>(k)]) continue;
     body << indent << "{  // " << jname(k) << "\n" << indent << "  " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
@@ -744,7 +807,7 @@ std::string Emitter::solve_lines(const std::vector<bool>& in, const std::string&
     body << indent << "  mbrt::solve_lower(" << L(k, k) << ", y);\n" << indent << "  " << seg("x", k) << " = y;\n" << indent << "}\n";
     solving += ops::triangular_solve(rows(k));
   }
-  for (size_t pk = order.size(); pk-- > 0;) {
+  for (size_t pk = order.size(); !forward && pk-- > 0;) {
     const int k = order[pk];
     if (!in[static_cast<size_t>(k)]) continue;
     body << indent << "{  // " << jname(k) << "\n" << indent << "  " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
@@ -964,8 +1027,9 @@ std::string Emitter::source() const {
   if (!a_.planar.refusal.empty()) o << "\n// Kept: spatial coordinates, since " << a_.planar.refusal << ".";
   o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n"
     << "#include <mbrt/reactions.hpp>\n#include <mbrt/schemes/"
-    << step_header() << ">\n\n"
+    << step_header() << ">\n" << (parallel() ? "#include <mbrt/worker_team.hpp>\n" : "") << "\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";
+  worker_team_definition(o);
   constants(o);
   model_members(o);
   kernels(o);
@@ -1018,7 +1082,8 @@ void Emitter::public_functions(std::ostringstream& o) const {
     << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept { return Model::constraint_violation(s); }\n\n"
     << "double quaternion_norm_error(const State& s) noexcept { return Model::quaternion_norm_error(s); }\n\n"
     << "void reactions(const State& s, Reactions& r) noexcept { Model::reactions(s, r); }\n\n"
-    << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept { Model::outputs(s, y); }\n\n" : "");
+    << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept { Model::outputs(s, y); }\n\n" : "")
+    << worker_functions();
 }
 
 void Emitter::reactions_function(std::ostringstream& o) const {

@@ -44,46 +44,60 @@ void Emitter::newton_matrix(std::ostringstream& o) const {
   auto pivot = [&](int k) { return "g." + jname(k) + ".D"; };
 
   OpCount factor;
-  std::ostringstream body;
+  std::ostringstream body;  // the serial step's, or the interface's
+  // The parallel step: each part's blocks in its own stream.
+  std::vector<std::ostringstream> part_body(static_cast<size_t>(parts()));
+  const auto stream = [&](int k) -> std::ostringstream& {
+    return parallel() && !interface_block(k) ? part_body[static_cast<size_t>(phase_part(k))] : body;
+  };
+  const auto part_lines = [&]() {
+    std::vector<std::string> lines;
+    for (auto& p : part_body) {
+      lines.push_back(p.str());
+      p.str("");
+    }
+    return lines;
+  };
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
-    body << "  // " << jname(k) << "\n  " << pivot(k) << " = " << g_block(k, k) << " + kNewtonShift * "
+    std::ostringstream& out = stream(k);
+    out << "  // " << jname(k) << "\n  " << pivot(k) << " = " << g_block(k, k) << " + kNewtonShift * "
          << block_type(rows(k), rows(k)) << "::Identity()";
     factor += s_block_ops(k, k);
     factor += ops::sum(rows(k), 1);
     for (size_t pj = 0; pj < pk; ++pj) {
       const int j = order[pj];
       if (!coupled(j, k)) continue;
-      body << "\n      - " << lo(k, j) << " * " << up(j, k);
+      out << "\n      - " << lo(k, j) << " * " << up(j, k);
       factor += ops::product(rows(k), rows(j), rows(k));
       factor += ops::sum(rows(k), rows(k));
     }
-    body << ";\n";
+    out << ";\n";
     for (int i : lower[static_cast<size_t>(k)]) {
-      body << "  " << lo(i, k) << " = " << g_block(i, k);
+      out << "  " << lo(i, k) << " = " << g_block(i, k);
       factor += s_block_ops(i, k);
       for (size_t pj = 0; pj < pk; ++pj) {
         const int j = order[pj];
         if (!(coupled(j, k) && coupled(j, i))) continue;
-        body << "\n      - " << lo(i, j) << " * " << up(j, k);
+        out << "\n      - " << lo(i, j) << " * " << up(j, k);
         factor += ops::product(rows(i), rows(j), rows(k));
         factor += ops::sum(rows(i), rows(k));
       }
-      body << ";\n  " << up(k, i) << " = " << g_block(k, i);
+      out << ";\n  " << up(k, i) << " = " << g_block(k, i);
       factor += s_block_ops(k, i);
       for (size_t pj = 0; pj < pk; ++pj) {
         const int j = order[pj];
         if (!(coupled(j, k) && coupled(j, i))) continue;
-        body << "\n      - " << lo(k, j) << " * " << up(j, i);
+        out << "\n      - " << lo(k, j) << " * " << up(j, i);
         factor += ops::product(rows(k), rows(j), rows(i));
         factor += ops::sum(rows(k), rows(i));
       }
-      body << ";\n";
+      out << ";\n";
     }
-    body << "  " << pivot(k) << " = " << pivot(k) << ".partialPivLu().inverse();\n";
+    out << "  " << pivot(k) << " = " << pivot(k) << ".partialPivLu().inverse();\n";
     factor += ops::lu_inverse(rows(k));
     for (int i : lower[static_cast<size_t>(k)]) {
-      body << "  " << lo(i, k) << " = " << lo(i, k) << " * " << pivot(k) << ";\n";
+      out << "  " << lo(i, k) << " = " << lo(i, k) << " * " << pivot(k) << ";\n";
       factor += ops::product(rows(i), rows(k), rows(k));
     }
   }
@@ -91,7 +105,7 @@ void Emitter::newton_matrix(std::ostringstream& o) const {
   o << "// (c0.*.mbt_*, c.*.rows) => (g): G block by block in S's elimination order.\n"
     << "// " << factor.text() << ".\n"
     << "static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {\n"
-    << body.str() << "}\n\n";
+    << (parallel() ? parallel_region(part_lines()) + "  // the interface\n" : "") << body.str() << "}\n\n";
 
   OpCount solving;
   body.str("");
@@ -100,25 +114,29 @@ void Emitter::newton_matrix(std::ostringstream& o) const {
     for (size_t pj = 0; pj < pk; ++pj) {
       const int j = order[pj];
       if (!coupled(j, k)) continue;
-      body << "  " << seg("x", k) << " -= " << lo(k, j) << " * " << seg("x", j) << ";\n";
+      stream(k) << "  " << seg("x", k) << " -= " << lo(k, j) << " * " << seg("x", j) << ";\n";
       solving += ops::product(rows(k), rows(j), 1);
       solving += ops::sum(rows(k), 1);
     }
   }
+  // Forward: the parts, then the interface; backward: the interface, then the parts.
+  std::string lines = parallel() ? parallel_region(part_lines()) + "  // the interface\n" : "";
   for (size_t pk = order.size(); pk-- > 0;) {
     const int k = order[pk];
-    body << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
+    std::ostringstream& out = stream(k);
+    out << "  {  // " << jname(k) << "\n    " << rows_type(rows(k)) << " y = " << seg("x", k) << ";\n";
     for (int i : lower[static_cast<size_t>(k)]) {
-      body << "    y -= " << up(k, i) << " * " << seg("x", i) << ";\n";
+      out << "    y -= " << up(k, i) << " * " << seg("x", i) << ";\n";
       solving += ops::product(rows(k), rows(i), 1);
       solving += ops::sum(rows(k), 1);
     }
-    body << "    " << seg("x", k) << " = " << pivot(k) << " * y;\n  }\n";
+    out << "    " << seg("x", k) << " = " << pivot(k) << " * y;\n  }\n";
     solving += ops::product(rows(k), rows(k), 1);
   }
+  lines += body.str() + (parallel() ? parallel_region(part_lines()) : "");
   o << "// (g, x) => (x): x := G^-1 x by forward and backward substitution.\n"
     << "// " << solving.text() << ".\n"
-    << "static void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {\n" << body.str() << "}\n\n";
+    << "static void solve_newton(const NewtonMatrix& g, Rows& x) noexcept {\n" << lines << "}\n\n";
 }
 
 }  // namespace mbrt::codegen

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -234,10 +235,29 @@ class Emitter {
   std::string jacobian_lines(const std::vector<bool>& in, const std::string& indent) const;
   std::string constraint_force_lines(const std::vector<bool>& in, const std::string& indent) const;
   std::string solve_lines(const std::vector<bool>& in, const std::string& indent, OpCount* count) const;
+  std::string solve_sweep_lines(const std::vector<bool>& in, const std::string& indent, OpCount* count, bool forward) const;
+  // The parallel step: lines(in) for each part's blocks, the interface's
+  // shared out among the parts (phase_part) or left out ...
+  std::vector<std::string> per_part_blocks(const std::function<std::string(const std::vector<bool>&)>& lines,
+                                           bool with_interface) const;
+  // ... and subtract_constraint_forces's lines per part, by body.
+  std::vector<std::string> constraint_force_lines_by_body() const;
   // Operations (op_count.hpp) of M^-1 J^T for body b and r rows, and of s_block(i, j).
   OpCount inverse_mass_ops(int b, int r) const;
   OpCount s_block_ops(int i, int j) const;
   void stacked(std::ostringstream& o, const std::string& member) const;  // Rows stacked_<member>(c)
+  // emit_parallel.cpp: the parallel step's phases (Analysis::partition).
+  bool parallel() const { return a_.partition.parts > 1; }
+  int parts() const { return a_.partition.parts; }
+  bool interface_block(int j) const { return parallel() && a_.partition.interface(j); }
+  int phase_part(int j) const;  // the part that runs block j in phases without coupling
+  int body_part(int b) const { return a_.partition.body_part[static_cast<size_t>(b)]; }
+  // A fork and join over the parts' lines; enter and leave run in every part.
+  std::string parallel_region(const std::vector<std::string>& part_lines, const std::string& enter = "",
+                              const std::string& leave = "") const;
+  void worker_team_definition(std::ostringstream& o) const;
+  std::string worker_declarations() const;  // the header's start_workers(), stop_workers()
+  std::string worker_functions() const;
   std::string seg(const std::string& v, int j) const;
   // Expression for block S(i, j) = sum over shared moving bodies of B_i M^-1 B_j^T,
   // M^-1 B_j^T from the constraint system named directions.

@@ -203,6 +203,10 @@ struct SolverSettings {
   // blajer: mass-orthogonal position corrections after each step.
   int corrections = 1;
   Ali3pSettings ali3p;
+  // The parallel step's subsystems, each on its own thread (docs/parallel.md).
+  int parallel_parts = 1;
+  SourceLocation parallel_parts_where;
+  int parallel_min_rows = -1;  // constraint rows per part below which the step stays serial; -1: the default
 };
 
 // An entry of the model's `tunable:` list (docs/parameters.md), as written.

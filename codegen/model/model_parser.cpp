@@ -35,7 +35,7 @@ const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
 const Keys kMessageFields = {"utime", "seq", "state_utime", "command_seq", "t"};
 const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
                           "stabilization", "baumgarte_alpha", "baumgarte_beta", "corrections",
-                          "ali3p"};
+                          "ali3p",         "parallel_parts", "parallel_min_rows"};
 const Keys kAli3pKeys = {"alpha",      "relative_shift",        "alpha_of",   "newton_iterations",
                          "projection", "projection_iterations", "integrator", "rho_inf"};
 
@@ -925,6 +925,12 @@ SolverSettings parse_solver(const Value& v) {
   if (auto x = s.find("baumgarte_beta")) solver.baumgarte_beta = read_non_negative(*x);
   if (auto x = s.find("corrections")) solver.corrections = read_integer_at_least(*x, 1);
   if (auto x = s.find("ali3p")) solver.ali3p = parse_ali3p(*x);
+  if (auto x = s.find("parallel_parts")) {
+    solver.parallel_parts = read_integer_at_least(*x, 1);
+    solver.parallel_parts_where = x->where;
+    if (solver.parallel_parts > 64) fail(*x, "expected at most 64 parts, got " + std::to_string(solver.parallel_parts));
+  }
+  if (auto x = s.find("parallel_min_rows")) solver.parallel_min_rows = read_integer_at_least(*x, 0);
   return solver;
 }
 

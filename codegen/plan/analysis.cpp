@@ -8,6 +8,7 @@
 #include <set>
 
 #include <amd.h>
+#include <camd.h>
 
 #include "constraint_evaluation.hpp"
 #include "parameters.hpp"
@@ -134,7 +135,7 @@ std::vector<std::vector<int>> every_pair(size_t n) {
   return out;
 }
 
-FactorPattern factor_pattern(const std::vector<std::vector<int>>& coupled) {
+FactorPattern factor_pattern(const std::vector<std::vector<int>>& coupled, const Partition& partition) {
   const int n = static_cast<int>(coupled.size());
   FactorPattern p;
   p.coupled = coupled;
@@ -147,7 +148,18 @@ FactorPattern factor_pattern(const std::vector<std::vector<int>>& coupled) {
     }
     double control[AMD_CONTROL], info[AMD_INFO];
     amd_defaults(control);
-    if (amd_order(n, Ap.data(), Ai.empty() ? nullptr : Ai.data(), p.order.data(), control, info) < AMD_OK) {
+    int status = AMD_OK;
+    if (partition.parts > 1) {
+      // The parallel step's arrowhead form: the parts' blocks in constraint
+      // sets 0 to parts - 1, eliminated in that order, the interface's last.
+      double camd_control[CAMD_CONTROL], camd_info[CAMD_INFO];
+      camd_defaults(camd_control);
+      status = camd_order(n, Ap.data(), Ai.empty() ? nullptr : Ai.data(), p.order.data(), camd_control, camd_info,
+                          partition.block_part.data());
+    } else {
+      status = amd_order(n, Ap.data(), Ai.empty() ? nullptr : Ai.data(), p.order.data(), control, info);
+    }
+    if (status < AMD_OK) {
       for (int i = 0; i < n; ++i) p.order[static_cast<size_t>(i)] = i;  // keep the natural order
     }
   }
@@ -167,6 +179,41 @@ FactorPattern factor_pattern(const std::vector<std::vector<int>>& coupled) {
     }
     p.lower[static_cast<size_t>(k)] = rest;
     eliminated[static_cast<size_t>(k)] = true;
+  }
+  return p;
+}
+
+// The parallel step's parts (docs/parallel.md): the schemes whose step is a
+// sequence of the phases the emitter splits, and models large enough to pay.
+Partition plan_partition(const Model& model, const Analysis& a, const Specializations& specialize) {
+  const int asked = model.solver.parallel_parts;
+  const auto serial = [&](const std::string& why) {
+    Partition p = partition_blocks(a.constraints, static_cast<int>(model.bodies.size()), 1);
+    p.requested = asked;
+    p.serial_reason = why;
+    return p;
+  };
+  if (asked <= 1) return serial("");
+  const mbrt::Scheme scheme = model.solver.scheme;
+  if (scheme != mbrt::Scheme::staggered_pcst && scheme != mbrt::Scheme::baumgarte && scheme != mbrt::Scheme::blajer) {
+    throw ModelError(model.solver.parallel_parts_where, "solver.parallel_parts",
+                     "the parallel step is built for staggered-pcst, baumgarte and blajer; the scheme is " +
+                         std::string(mbrt::scheme_name(scheme)) +
+                         (model.solver.scheme_given ? "" : " (the default for this model: give solver.scheme)"));
+  }
+  if (!model.contacts.empty() || std::any_of(model.joints.begin(), model.joints.end(),
+                                             [](const Joint& j) { return j.friction.any(); })) {
+    throw ModelError(model.solver.parallel_parts_where, "solver.parallel_parts",
+                     "the parallel step does not take contacts or joint friction yet; remove parallel_parts");
+  }
+  if (!specialize.sparse_factor) return serial("without the sparse_factor specialization S has no arrowhead form");
+  Partition p = partition_blocks(a.constraints, static_cast<int>(model.bodies.size()), asked);
+  const int fewest = p.part_rows.empty() ? 0 : *std::min_element(p.part_rows.begin(), p.part_rows.end());
+  const int least = model.solver.parallel_min_rows >= 0 ? model.solver.parallel_min_rows : kMinRowsPerPart;
+  if (p.parts < asked || fewest < std::max(1, least)) {
+    return serial(std::to_string(asked) + " parts would hold " + std::to_string(fewest) +
+                  " constraint rows in the smallest; below " + std::to_string(least) +
+                  " per part (solver.parallel_min_rows) the threads' synchronisation costs more than they save");
   }
   return p;
 }
@@ -577,7 +624,9 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   if (!specialize.unloaded_bodies) {
     for (BodyPlan& b : a.bodies) b.loaded = true;
   }
-  a.pattern = factor_pattern(specialize.sparse_factor ? coupling(a.constraints) : every_pair(a.constraints.size()));
+  a.partition = plan_partition(model, a, specialize);
+  a.pattern = factor_pattern(specialize.sparse_factor ? coupling(a.constraints) : every_pair(a.constraints.size()),
+                             a.partition);
 
   // Scheme parameters (docs/staggered-pcst.md, docs/schemes.md).
   const double h = model.solver.step;

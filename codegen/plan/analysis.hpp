@@ -11,6 +11,7 @@
 #include <mbrt/joints.hpp>
 
 #include "model.hpp"
+#include "partition.hpp"
 #include "specializations.hpp"
 #include "tree_frames.hpp"
 #include "tree_plan.hpp"
@@ -136,6 +137,7 @@ struct Analysis {
   std::vector<InputPlan> inputs;  // same order as Model::inputs
   std::vector<ContactPlan> contacts;  // same order as Model::contacts
   std::vector<int> mechanism;  // per body: the first body of its mechanism (bodies joined by joints or drivers)
+  Partition partition;  // the parallel step's subsystems (one part: serial)
   FactorPattern pattern;
   bool gravity = false;
   bool velocity_dependent_forces = false;  // gyroscopic or damping terms: two stages per step

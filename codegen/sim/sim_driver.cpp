@@ -30,11 +30,12 @@ struct Options {
   long every = 1;
   bool velocities = false;
   bool reactions = false;
+  bool serial = false;  // the parallel step's parts on the caller's thread only
   std::vector<std::string> set;  // --set KEY=VALUE, in order
 };
 
 [[noreturn]] void usage(const char* why) {
-  std::fprintf(stderr, "sim driver: %s\nusage: sim [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--set KEY=VALUE]...\n", why);
+  std::fprintf(stderr, "sim driver: %s\nusage: sim [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--serial] [--set KEY=VALUE]...\n", why);
   std::exit(2);
 }
 
@@ -51,6 +52,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--every") o.every = std::atol(value());
     else if (a == "--velocities") o.velocities = true;
     else if (a == "--reactions") o.reactions = true;
+    else if (a == "--serial") o.serial = true;
     else if (a == "--set" || a.rfind("--set=", 0) == 0) o.set.push_back(a == "--set" ? value() : argv[i] + 6);
     else usage(("unknown option " + a).c_str());
   }
@@ -177,6 +179,7 @@ int main(int argc, char** argv) {
     write_header(csv, opt);
   }
   model::State s = initial_state(opt);
+  if (!opt.serial) model::start_workers();  // the parallel step's threads (docs/parallel.md); none for a serial one
   const auto workspace = std::make_unique<model::Workspace>();  // large models: not on the stack
   const double e0 = model::energy(s).total();
   const long steps = std::lround(opt.t_end / model::kStep);

@@ -1,0 +1,39 @@
+// The parallel step's subsystems (docs/parallel.md): the constraint blocks
+// split into parts that share no moving body, and an interface of the blocks
+// that couple parts. Ordered parts first and the interface last, S = B M^-1 B^T
+// is block arrowhead: each part's factor is formed on its own thread, the
+// interface's (the Schur complement of the parts) after them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+
+namespace mbrt::codegen {
+
+struct ConstraintBlock;
+
+struct Partition {
+  int parts = 1;                // 1: the serial step
+  int requested = 1;            // solver.parallel_parts
+  std::vector<int> block_part;  // per constraint block: its part, or `parts` for the interface
+  std::vector<int> body_part;   // per body: the part that updates it in the per-body phases
+  int interface_blocks = 0;
+  int interface_rows = 0;
+  std::vector<int> part_rows;   // constraint rows per part, the interface's not counted
+  std::string serial_reason;    // why the serial step is used although parts were asked for
+  bool interface(int block) const { return block_part[static_cast<size_t>(block)] == parts; }
+};
+
+// Constraint rows per part below which the parallel step does not pay: the
+// fork and join of its phases cost more than the part saves (measured,
+// timing/parallel_speedup; docs/parallel.md).
+inline constexpr int kMinRowsPerPart = 96;
+
+// Splits the blocks into `parts` parts of about equal rows along a
+// depth-first order of the bodies (subtrees and chain segments stay
+// together), then moves to the interface every block of a later part that
+// shares a moving body with a block of an earlier one.
+Partition partition_blocks(const std::vector<ConstraintBlock>& blocks, int bodies, int parts);
+
+}  // namespace mbrt::codegen
