@@ -67,7 +67,7 @@ TEST_CASE("mbrt sim writes the CSV trajectory and ends with a JSON summary") {
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const nlohmann::json json = summary(r);
-  for (const char* key : {"model", "scheme", "h", "steps", "wall_s", "ns_per_step", "max_position_violation",
+  for (const char* key : {"model", "scheme", "h", "steps", "wall_s", "ns_per_step", "max_ns_per_step", "max_position_violation",
                           "max_velocity_violation", "max_acceleration_violation", "max_quat_norm_error",
                           "energy_initial", "energy_final", "status"}) {
     CHECK_MESSAGE(json.contains(key), key);

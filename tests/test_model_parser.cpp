@@ -381,7 +381,7 @@ solver:
   stepsize: 0.001
 )",
                     "solver.stepsize", 6,
-                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization, baumgarte_alpha, baumgarte_beta, corrections, ali3p)");
+                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization, baumgarte_alpha, baumgarte_beta, corrections, ali3p, parallel_parts, parallel_min_rows)");
 }
 
 TEST_CASE("a key given twice in one map is rejected naming the first") {
@@ -531,6 +531,27 @@ bodies:
   - {name: a, mass: 1, particle: yes}
 )",
                     "bodies[0].particle", 3, "expected true or false, got 'yes'");
+}
+
+TEST_CASE("parallel_parts takes 1 to 64 parts, parallel_min_rows a count >= 0") {
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver: {parallel_parts: 0}
+)",
+                    "solver.parallel_parts", 4, "expected an integer >= 1, got 0");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver: {parallel_parts: 65}
+)",
+                    "solver.parallel_parts", 4, "expected at most 64 parts, got 65");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver: {parallel_min_rows: -1}
+)",
+                    "solver.parallel_min_rows", 4, "expected an integer >= 0, got -1");
 }
 
 TEST_CASE("a non-integer euler_updates is rejected") {

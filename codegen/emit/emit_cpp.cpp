@@ -856,14 +856,16 @@ void Emitter::mass_products(std::ostringstream& o) const {
   o << "// (l) => (M^-1 F) per body.\n"
     << "static BodyVectors free_accelerations(" << mass_parameter() << "const Loads& l) noexcept {\n  BodyVectors a;\n";
   if (std::none_of(a_.bodies.begin(), a_.bodies.end(), [](const BodyPlan& p) { return p.loaded; })) o << "  (void)l;\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    if (!a_.bodies[i].loaded) {
-      o << "  a" << at(static_cast<int>(i)) << ".setZero();  // " << m_.bodies[i].name << ": no applied load\n";
+  std::vector<std::string> part_lines(static_cast<size_t>(parts()));
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    std::string& out = part_lines[static_cast<size_t>(parallel() ? body_part(i) : 0)];
+    if (!plan(i).loaded) {
+      out += "  a" + at(i) + ".setZero();  // " + body(i).name + ": no applied load\n";
       continue;
     }
-    o << "  a" << at(static_cast<int>(i)) << " = mbrt::inverse_mass_times(" << mass_of(static_cast<int>(i)) << ", l.w" << at(static_cast<int>(i)) << ");\n";
+    out += "  a" + at(i) + " = mbrt::inverse_mass_times(" + mass_of(i) + ", l.w" + at(i) + ");\n";
   }
-  o << "  return a;\n}\n\n";
+  o << (parallel() ? parallel_region(part_lines) : part_lines[0]) << "  return a;\n}\n\n";
 }
 
 void Emitter::initial_state_function(std::ostringstream& o) const {
@@ -992,11 +994,12 @@ static double quaternion_norm_error(const State& s) noexcept {
 void Emitter::kinematics_function(std::ostringstream& o) const {
   o << "// (s) => (k): pose and velocity of every body.\n"
     << "static void kinematics(const State& s, Kinematics& k) noexcept {\n";
-  for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  " << pose(static_cast<int>(i)) << " = mbrt::" << (planar_ ? "planar_pose_of<kNormal>(" : "pose_of(") << state_of(static_cast<int>(i))
-      << ");\n";
+  std::vector<std::string> part_lines(static_cast<size_t>(parts()));
+  for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
+    part_lines[static_cast<size_t>(parallel() ? body_part(i) : 0)] +=
+        "  " + pose(i) + " = mbrt::" + (planar_ ? "planar_pose_of<kNormal>(" : "pose_of(") + state_of(i) + ");\n";
   }
-  o << "  k.vel = velocities_of(s);\n}\n\n";
+  o << (parallel() ? parallel_region(part_lines) : part_lines[0]) << "  k.vel = velocities_of(s);\n}\n\n";
 }
 
 std::string Emitter::step_function() const {

@@ -94,7 +94,7 @@ void Emitter::newton_matrix(std::ostringstream& o) const {
       }
       out << ";\n";
     }
-    out << "  " << pivot(k) << " = " << pivot(k) << ".partialPivLu().inverse();\n";
+    out << "  mbrt::invert_with_pivoting(" << pivot(k) << ");\n";
     factor += ops::lu_inverse(rows(k));
     for (int i : lower[static_cast<size_t>(k)]) {
       out << "  " << lo(i, k) << " = " << lo(i, k) << " * " << pivot(k) << ";\n";

@@ -45,18 +45,20 @@ static void drift(State& s) noexcept {
   for (int b = 0; b < kRigidBodies; ++b) s.rigid[b].r += h * s.rigid[b].v;
   for (int b = 0; b < kParticles; ++b) s.particle[b].r += h * s.particle[b].v;
 )";
+  std::vector<std::string> part_lines(static_cast<size_t>(parts()));
   for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
     if (!plan(i).rigid) continue;
     const std::string st = state_of(i);
+    std::string& out = part_lines[static_cast<size_t>(parallel() ? body_part(i) : 0)];
     if (!free_rotation() || spherical_inertia(i)) {  // w constant over the step
-      o << "  " << st << ".p = mbrt::advance_euler_parameters(" << st << ".p, " << st << ".w, h, kEulerUpdates);  // "
-        << body(i).name << "\n";
+      out += "  " + st + ".p = mbrt::advance_euler_parameters(" + st + ".p, " + st + ".w, h, kEulerUpdates);  // " +
+             body(i).name + "\n";
     } else {
-      o << "  mbrt::free_rotation(" << mass_of(i) << ", " << st << ".p, " << st << ".w, h, kEulerUpdates);  // "
-        << body(i).name << "\n";
+      out += "  mbrt::free_rotation(" + mass_of(i) + ", " + st + ".p, " + st + ".w, h, kEulerUpdates);  // " +
+             body(i).name + "\n";
     }
   }
-  o << "  s.t += h;\n}\n\n";
+  o << (parallel() ? parallel_region(part_lines) : part_lines[0]) << "  s.t += h;\n}\n\n";
 }
 
 // The kernels only the staggered schemes' step calls; the step itself is

@@ -198,6 +198,7 @@ int main(int argc, char** argv) {
   const auto started = clock::now();
   auto last_report = started;
   double stepping_s = 0.0;
+  double slowest_s = 0.0;  // the slowest chunk's time per step: with --every 1, the slowest step
   long done = 0;
   mbrt::StepStatus status = mbrt::StepStatus::ok;
   while (done < steps && status == mbrt::StepStatus::ok) {
@@ -206,6 +207,7 @@ int main(int argc, char** argv) {
     for (long i = 0; i < chunk && status == mbrt::StepStatus::ok; ++i, ++done) status = model::step(s, *workspace);
     const auto t1 = clock::now();
     stepping_s += std::chrono::duration<double>(t1 - t0).count();
+    slowest_s = std::max(slowest_s, std::chrono::duration<double>(t1 - t0).count() / static_cast<double>(std::max(chunk, 1L)));
     if (done % opt.every == 0 || done == steps) sample();
     if (t1 - last_report > std::chrono::seconds(5)) {  // progress on long runs
       std::fprintf(stderr, "t = %.6g of %.6g s (%.0f%%)\n", s.t, opt.t_end, 100.0 * done / std::max(steps, 1L));
@@ -222,6 +224,7 @@ int main(int argc, char** argv) {
       {"steps", done},
       {"wall_s", wall_s},
       {"ns_per_step", done ? 1e9 * stepping_s / static_cast<double>(done) : 0.0},
+      {"max_ns_per_step", 1e9 * slowest_s},
       {"max_position_violation", max_pos},
       {"max_velocity_violation", max_vel},
       {"max_acceleration_violation", max_acc},

@@ -10,5 +10,6 @@
 #include "mbrt/mass_properties.hpp"
 #include "mbrt/model_api.hpp"
 #include "mbrt/nonholonomic.hpp"
+#include "mbrt/pivoted_inverse.hpp"
 #include "mbrt/planar.hpp"
 #include "mbrt/rotation.hpp"
