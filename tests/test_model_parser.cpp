@@ -381,7 +381,7 @@ solver:
   stepsize: 0.001
 )",
                     "solver.stepsize", 6,
-                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization, baumgarte_alpha, baumgarte_beta, corrections, ali3p, parallel_parts, parallel_min_rows)");
+                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization, baumgarte_alpha, baumgarte_beta, corrections, ali3p, parallel_parts, parallel_min_rows, parallel_interface, pcg_iterations, pcg_preconditioner)");
 }
 
 TEST_CASE("a key given twice in one map is rejected naming the first") {
@@ -552,6 +552,18 @@ bodies:
 solver: {parallel_min_rows: -1}
 )",
                     "solver.parallel_min_rows", 4, "expected an integer >= 0, got -1");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver: {parallel_interface: iterative}
+)",
+                    "solver.parallel_interface", 4, "expected one of: direct, pcg, got 'iterative'");
+  CHECK_MODEL_ERROR(R"(name: m
+bodies:
+  - {name: a, mass: 1, particle: true}
+solver: {pcg_preconditioner: jacobi}
+)",
+                    "solver.pcg_preconditioner", 4, "expected one of: block, diagonal, got 'jacobi'");
 }
 
 TEST_CASE("a non-integer euler_updates is rejected") {

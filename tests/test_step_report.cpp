@@ -85,6 +85,26 @@ TEST_CASE("the report lists what was left out and counts less for the specialize
   CHECK(one.at("flops_per_step").get<double>() < general.at("flops_per_step").get<double>());
   CHECK(special.at("calibration").is_string());
   CHECK(special.at("stable_step").at("stable_step").is_number());
+  CHECK(special.at("parallel").at("parts") == 1);
+  CHECK(special.at("parallel").at("interface_solve") == "none");
+}
+
+TEST_CASE("the report gives the parallel step's parts and interface, and why a small model stays serial") {
+  const std::string four_bar = std::string(MBRT_TEST_MODELS) + "/four_bar.yaml";
+  const nlohmann::json small = run("gen '" + four_bar + "' --report --parallel-parts 2");
+  CHECK(small.at("parallel").at("parts") == 1);
+  CHECK(small.at("parallel").at("requested") == 2);
+  CHECK(small.at("parallel").at("serial_reason").get<std::string>().find("parallel_min_rows") != std::string::npos);
+  const nlohmann::json split =
+      run("gen '" + four_bar + "' --report --parallel-parts 2 --parallel-min-rows 0 --parallel-interface pcg --pcg-iterations 3");
+  const nlohmann::json& p = split.at("parallel");
+  CHECK(p.at("parts") == 2);
+  CHECK(p.at("interface_blocks").get<int>() >= 1);
+  CHECK(p.at("serial_reason") == "");
+  CHECK(p.at("interface_solve") == "pcg, 3 iterations, block preconditioner");
+  int rows = p.at("interface_rows").get<int>();
+  for (const auto& r : p.at("part_rows")) rows += r.get<int>();
+  CHECK(rows == 20);  // four revolute joints of 5 rows: every block in a part or the interface
 }
 
 TEST_CASE("the report names the planar specialization where it applies and says why where it does not") {

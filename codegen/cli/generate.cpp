@@ -37,6 +37,9 @@ void apply_overrides(Model& model, const GenerateOptions& options) {
     model.solver.parallel_parts_where = {model.file, 0, 0};
   }
   if (options.parallel_min_rows) model.solver.parallel_min_rows = *options.parallel_min_rows;
+  if (options.parallel_interface) model.solver.parallel_interface = *options.parallel_interface;
+  if (options.pcg_iterations) model.solver.pcg_iterations = *options.pcg_iterations;
+  if (options.pcg_preconditioner) model.solver.pcg_preconditioner = *options.pcg_preconditioner;
   Ali3pSettings& ali3p = model.solver.ali3p;
   if (options.ali3p_projection) ali3p.cuadrado_projection = *options.ali3p_projection == "cuadrado";
   if (options.ali3p_integrator) ali3p.generalized_alpha = *options.ali3p_integrator == "generalized_alpha";
@@ -72,6 +75,11 @@ void check_generate_options(const GenerateOptions& options) {
   if (options.parallel_parts && (*options.parallel_parts < 1 || *options.parallel_parts > 64))
     bad("--parallel-parts", "expected an integer from 1 to 64");
   if (options.parallel_min_rows && *options.parallel_min_rows < 0) bad("--parallel-min-rows", "expected an integer >= 0");
+  if (options.parallel_interface && *options.parallel_interface != "direct" && *options.parallel_interface != "pcg")
+    bad("--parallel-interface", "expected direct or pcg, got '" + *options.parallel_interface + "'");
+  if (options.pcg_iterations && *options.pcg_iterations < 1) bad("--pcg-iterations", "expected an integer >= 1");
+  if (options.pcg_preconditioner && *options.pcg_preconditioner != "block" && *options.pcg_preconditioner != "diagonal")
+    bad("--pcg-preconditioner", "expected block or diagonal, got '" + *options.pcg_preconditioner + "'");
   if (options.ali3p_projection && *options.ali3p_projection != "bayo" && *options.ali3p_projection != "cuadrado")
     bad("--ali3p-projection", "expected bayo or cuadrado, got '" + *options.ali3p_projection + "'");
   if (options.ali3p_integrator && *options.ali3p_integrator != "trapezoidal" &&

@@ -71,6 +71,13 @@ void add_generate_options(CLI::App& app, mbrt::codegen::GenerateOptions& gen, st
                                   "constraint rows per part below which the step stays serial, overriding "
                                   "solver.parallel_min_rows (0: always split)")
       ->check(number_check("an integer", [](double k) { return k == std::floor(k) && std::abs(k) < 1e9; }));
+  app.add_option_function<std::string>("--parallel-interface", [&gen](const std::string& m) { gen.parallel_interface = m; },
+                                       "direct or pcg: the parallel step's interface, overriding solver.parallel_interface");
+  app.add_option_function<double>("--pcg-iterations", [&gen](double k) { gen.pcg_iterations = static_cast<int>(k); },
+                                  "conjugate-gradient iterations on the interface, overriding solver.pcg_iterations")
+      ->check(number_check("an integer", [](double k) { return k == std::floor(k) && std::abs(k) < 1e9; }));
+  app.add_option_function<std::string>("--pcg-preconditioner", [&gen](const std::string& m) { gen.pcg_preconditioner = m; },
+                                       "block or diagonal, overriding solver.pcg_preconditioner");
   app.add_flag("--project-initial", gen.project_initial, "project the initial state onto the constraints");
   app.add_flag("--can-fd", gen.can_fd, "the CAN layout in CAN FD frames of up to 64 bytes");
   app.add_option_function<std::string>("--name", [&gen](const std::string& n) { gen.name = n; },

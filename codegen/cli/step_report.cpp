@@ -81,6 +81,11 @@ std::string report_json(const StepReport& r) {
                          {"part_rows", p.part_rows},
                          {"interface_blocks", p.interface_blocks},
                          {"interface_rows", p.interface_rows},
+                         {"interface_solve", p.parts == 1    ? "none"
+                                             : !p.pcg        ? "direct"
+                                                             : "pcg, " + std::to_string(p.pcg_iterations) + " iterations, " +
+                                                                   (p.block_preconditioner ? "block" : "diagonal") +
+                                                                   " preconditioner"},
                          {"serial_reason", p.serial_reason}};
   const Json predicted = r.ns_per_flop ? Json(*r.ns_per_flop * static_cast<double>(r.per_step.flops)) : Json(nullptr);
   const Json j = {{"model", r.model},

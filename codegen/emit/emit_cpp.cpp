@@ -663,21 +663,30 @@ void Emitter::factorization(std::ostringstream& o) const {
   for (size_t pk = 0; pk < order.size(); ++pk) {
     const int k = order[pk];
     std::ostringstream& out = parallel() && !interface_block(k) ? part_body[static_cast<size_t>(phase_part(k))] : body;
-    out << "  // " << jname(k) << "\n  " << L(k, k) << " = " << s_block(k, k);
+    // With conjugate gradients on the interface, its blocks keep only their
+    // diagonal block of the Schur complement, the preconditioner.
+    const bool preconditioner = pcg_interface() && interface_block(k);
+    out << "  // " << jname(k) << (preconditioner ? ": the preconditioner" : "") << "\n  " << L(k, k) << " = "
+        << s_block(k, k);
     factor += s_block_ops(k, k);
     factor += ops::sum(rows(k), 1);  // the diagonal shift
     if (!shifted) out << " + kRegularization * " << block_type(rows(k), rows(k)) << "::Identity()";
     for (size_t pj = 0; pj < pk; ++pj) {
       const int j = order[pj];
-      if (!in_lower(j, k)) continue;
+      if (!in_lower(j, k) || (preconditioner && interface_block(j))) continue;
       out << "\n      - " << L(k, j) << " * " << L(k, j) << ".transpose()";
       factor += ops::product(rows(k), rows(j), rows(k));
       factor += ops::sum(rows(k), rows(k));
     }
     out << ";\n";
-    if (shifted) body << "  " << L(k, k) << ".diagonal() += " << seg("shift", k) << ";\n";
+    if (shifted) out << "  " << L(k, k) << ".diagonal() += " << seg("shift", k) << ";\n";
+    if (preconditioner && !a_.partition.block_preconditioner) {
+      out << "  positive = (" << L(k, k) << ".diagonal().array() > 0.0).all() && positive;\n";
+      continue;
+    }
     out << "  positive = mbrt::cholesky_in_place(" << L(k, k) << ") && positive;\n";
     factor += ops::cholesky(rows(k));
+    if (preconditioner) continue;
     for (int i : lower[static_cast<size_t>(k)]) {
       out << "  " << L(i, k) << " = " << s_block(i, k);
       factor += s_block_ops(i, k);
@@ -720,8 +729,11 @@ void Emitter::factorization(std::ostringstream& o) const {
     for (int j = 0; j < blocks(); ++j) in_interface[static_cast<size_t>(j)] = interface_block(j);
     const auto forward = per_part_blocks([&](const std::vector<bool>& in) { return solve_sweep_lines(in, "  ", &solving, true); }, false);
     const auto backward = per_part_blocks([&](const std::vector<bool>& in) { return solve_sweep_lines(in, "  ", &solving, false); }, false);
-    body << parallel_region(forward) << "  // the interface\n" << solve_sweep_lines(in_interface, "  ", &solving, true)
-         << solve_sweep_lines(in_interface, "  ", &solving, false) << parallel_region(backward);
+    body << parallel_region(forward)
+         << (pcg_interface() ? interface_pcg_lines(&solving)
+                             : "  // the interface\n" + solve_sweep_lines(in_interface, "  ", &solving, true) +
+                                   solve_sweep_lines(in_interface, "  ", &solving, false))
+         << parallel_region(backward);
   } else {
     body << solve_lines(every_block(), "  ", &solving);
   }

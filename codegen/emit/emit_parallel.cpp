@@ -39,6 +39,113 @@ std::string Emitter::parallel_region(const std::vector<std::string>& part_lines,
   return o;
 }
 
+// C x_I = r_I on the interface, C = S_II - sum_p L_Ip L_Ip^T the Schur
+// complement of the parts, by a fixed number of preconditioned conjugate-
+// gradient iterations from x_I = 0 (Hestenes and Stiefel 1952; the
+// preconditioner is C's diagonal blocks' Cholesky factors or C's diagonal).
+// C is applied without being formed: S_II p from the rows and the directions,
+// L_Ip (L_Ip^T p) from the parts' factor blocks. The iteration count is fixed,
+// so the work is; a converged iteration (zero residual) takes zero steps.
+std::string Emitter::interface_pcg_lines(OpCount* count) const {
+  const auto& order = a_.pattern.order;
+  const auto& lower = a_.pattern.lower;
+  const auto in_lower = [&](int j, int i) {
+    const auto& v = lower[static_cast<size_t>(j)];
+    return std::find(v.begin(), v.end(), i) != v.end();
+  };
+  std::vector<int> interface;
+  std::vector<int> offset(static_cast<size_t>(blocks()), 0);
+  int size = 0;
+  for (int k : order) {
+    if (!interface_block(k)) continue;
+    interface.push_back(k);
+    offset[static_cast<size_t>(k)] = size;
+    size += rows(k);
+  }
+  const auto packed = [&](const std::string& v, int k) {
+    return v + ".segment<" + std::to_string(rows(k)) + ">(" + std::to_string(offset[static_cast<size_t>(k)]) + ")";
+  };
+  OpCount ops_once, ops_iteration;
+  std::ostringstream o;
+  o << "  {  // the interface: " << a_.partition.pcg_iterations << " iterations of preconditioned conjugate gradients\n"
+    << "    using InterfaceRows = Eigen::Matrix<double, " << size << ", 1>;\n"
+    << "    InterfaceRows r, z, p, q, x_interface = InterfaceRows::Zero();\n";
+  for (int k : interface) {  // the right-hand side less the parts' forward sweeps
+    o << "    " << packed("r", k) << " = " << seg("x", k);
+    for (int j : order) {
+      if (interface_block(j) || !in_lower(j, k)) continue;
+      o << "\n        - " << L(k, j) << " * " << seg("x", j);
+      ops_once += ops::product(rows(k), rows(j), 1);
+      ops_once += ops::sum(rows(k), 1);
+    }
+    o << ";\n";
+  }
+  const auto precondition = [&](OpCount& c) {
+    std::string lines;
+    for (int k : interface) {
+      if (a_.partition.block_preconditioner) {
+        lines += "    {\n      " + rows_type(rows(k)) + " y = " + packed("r", k) + ";\n      mbrt::solve_lower(" + L(k, k) +
+                 ", y);\n      mbrt::solve_lower_transposed(" + L(k, k) + ", y);\n      " + packed("z", k) + " = y;\n    }\n";
+        c += ops::triangular_solve(rows(k));
+        c += ops::triangular_solve(rows(k));
+      } else {
+        lines += "    " + packed("z", k) + " = " + packed("r", k) + ".cwiseQuotient(" + L(k, k) + ".diagonal());\n";
+        c += OpCount{0, 0, rows(k), 0};
+      }
+    }
+    return lines;
+  };
+  o << precondition(ops_once) << "    p = z;\n    double rz = r.dot(z);\n"
+    << "    for (int iteration = 0; iteration < " << a_.partition.pcg_iterations << "; ++iteration) {\n";
+  // q = C p: the parts' terms through L_Ip^T p ...
+  for (int j : order) {
+    if (interface_block(j)) continue;
+    std::string terms;
+    for (int i : lower[static_cast<size_t>(j)]) {
+      if (!interface_block(i)) continue;
+      terms += (terms.empty() ? "" : "\n          + ") + L(i, j) + ".transpose() * " + packed("p", i);
+      ops_iteration += ops::product(rows(j), rows(i), 1);
+    }
+    if (!terms.empty()) o << "      const " << rows_type(rows(j)) << " t_" << jname(j) << " = " << terms << ";\n";
+  }
+  // ... and S_II p from the rows and directions, body by body.
+  for (int k : interface) {
+    o << "      " << packed("q", k) << " = kRegularization * " << packed("p", k);
+    std::vector<int> neighbours = {k};
+    for (int i : a_.pattern.coupled[static_cast<size_t>(k)]) {
+      if (interface_block(i)) neighbours.push_back(i);
+    }
+    for (int i : neighbours) {
+      for (int b : moving_bodies(k)) {
+        const auto mi = moving_bodies(i);
+        if (std::find(mi.begin(), mi.end(), b) == mi.end()) continue;
+        o << "\n          + " << rows_of(k) << "." << side(k, b) << " * (" << mbt(i, b) << " * " << packed("p", i) << ")";
+        ops_iteration += ops::product(body_dofs(), rows(i), 1);
+        ops_iteration += ops::product(rows(k), body_dofs(), 1);
+      }
+    }
+    for (int j : order) {
+      if (interface_block(j) || !in_lower(j, k)) continue;
+      o << "\n          - " << L(k, j) << " * t_" << jname(j);
+      ops_iteration += ops::product(rows(k), rows(j), 1);
+    }
+    o << ";\n";
+  }
+  o << "      const double pq = p.dot(q);\n      const double alpha = pq > 0.0 ? rz / pq : 0.0;\n"
+    << "      x_interface += alpha * p;\n      r -= alpha * q;\n"
+    << precondition(ops_iteration)
+    << "      const double rz_next = r.dot(z);\n      const double beta = rz > 0.0 ? rz_next / rz : 0.0;\n"
+    << "      p = z + beta * p;\n      rz = rz_next;\n    }\n";
+  ops_iteration += OpCount{5 * size, 5 * size, 2, 0};  // two dot products and three updates
+  for (int k : interface) o << "    " << seg("x", k) << " = " << packed("x_interface", k) << ";\n";
+  o << "  }\n";
+  if (count) {
+    *count += ops_once;
+    for (int it = 0; it < a_.partition.pcg_iterations; ++it) *count += ops_iteration;
+  }
+  return o.str();
+}
+
 void Emitter::worker_team_definition(std::ostringstream& o) const {
   if (!parallel()) return;
   o << "// The threads the step's phases run on (docs/parallel.md); start_workers()\n"

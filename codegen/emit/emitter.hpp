@@ -252,6 +252,9 @@ class Emitter {
   bool interface_block(int j) const { return parallel() && a_.partition.interface(j); }
   int phase_part(int j) const;  // the part that runs block j in phases without coupling
   int body_part(int b) const { return a_.partition.body_part[static_cast<size_t>(b)]; }
+  bool pcg_interface() const { return parallel() && a_.partition.pcg; }
+  // solve()'s interface by preconditioned conjugate gradients (the parts' forward sweeps done).
+  std::string interface_pcg_lines(OpCount* count) const;
   // A fork and join over the parts' lines; enter and leave run in every part.
   std::string parallel_region(const std::vector<std::string>& part_lines, const std::string& enter = "",
                               const std::string& leave = "") const;

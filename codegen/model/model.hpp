@@ -207,6 +207,13 @@ struct SolverSettings {
   int parallel_parts = 1;
   SourceLocation parallel_parts_where;
   int parallel_min_rows = -1;  // constraint rows per part below which the step stays serial; -1: the default
+  // The interface's Schur complement: factorized ("direct"), or solved by a
+  // fixed number of preconditioned conjugate-gradient iterations ("pcg"; 0:
+  // as many as the interface has rows) with a "block" (each interface block's
+  // diagonal block) or "diagonal" preconditioner.
+  std::string parallel_interface = "direct";
+  int pcg_iterations = 0;
+  std::string pcg_preconditioner = "block";
 };
 
 // An entry of the model's `tunable:` list (docs/parameters.md), as written.

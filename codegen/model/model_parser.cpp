@@ -35,7 +35,8 @@ const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
 const Keys kMessageFields = {"utime", "seq", "state_utime", "command_seq", "t"};
 const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
                           "stabilization", "baumgarte_alpha", "baumgarte_beta", "corrections",
-                          "ali3p",         "parallel_parts", "parallel_min_rows"};
+                          "ali3p",         "parallel_parts", "parallel_min_rows", "parallel_interface",
+                          "pcg_iterations", "pcg_preconditioner"};
 const Keys kAli3pKeys = {"alpha",      "relative_shift",        "alpha_of",   "newton_iterations",
                          "projection", "projection_iterations", "integrator", "rho_inf"};
 
@@ -931,6 +932,9 @@ SolverSettings parse_solver(const Value& v) {
     if (solver.parallel_parts > 64) fail(*x, "expected at most 64 parts, got " + std::to_string(solver.parallel_parts));
   }
   if (auto x = s.find("parallel_min_rows")) solver.parallel_min_rows = read_integer_at_least(*x, 0);
+  if (auto x = s.find("parallel_interface")) solver.parallel_interface = read_choice(*x, {"direct", "pcg"});
+  if (auto x = s.find("pcg_iterations")) solver.pcg_iterations = read_integer_at_least(*x, 1);
+  if (auto x = s.find("pcg_preconditioner")) solver.pcg_preconditioner = read_choice(*x, {"block", "diagonal"});
   return solver;
 }
 

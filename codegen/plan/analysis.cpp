@@ -215,6 +215,9 @@ Partition plan_partition(const Model& model, const Analysis& a, const Specializa
                   " constraint rows in the smallest; below " + std::to_string(least) +
                   " per part (solver.parallel_min_rows) the threads' synchronisation costs more than they save");
   }
+  p.pcg = model.solver.parallel_interface == "pcg" && p.interface_rows > 0;
+  p.pcg_iterations = model.solver.pcg_iterations > 0 ? model.solver.pcg_iterations : p.interface_rows;
+  p.block_preconditioner = model.solver.pcg_preconditioner == "block";
   return p;
 }
 

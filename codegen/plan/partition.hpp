@@ -22,6 +22,11 @@ struct Partition {
   int interface_rows = 0;
   std::vector<int> part_rows;   // constraint rows per part, the interface's not counted
   std::string serial_reason;    // why the serial step is used although parts were asked for
+  // The interface's Schur complement: factorized, or solved by pcg_iterations
+  // of preconditioned conjugate gradients (block or diagonal preconditioner).
+  bool pcg = false;
+  int pcg_iterations = 0;
+  bool block_preconditioner = true;
   bool interface(int block) const { return block_part[static_cast<size_t>(block)] == parts; }
 };
 

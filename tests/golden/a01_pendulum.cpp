@@ -401,7 +401,7 @@ static void drift(State& s) noexcept {
 static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {
   // bar
   g.bar.D = c.bar.rows.J2 * c0.bar.mbt_bob + kNewtonShift * Eigen::Matrix<double, 1, 1>::Identity();
-  g.bar.D = g.bar.D.partialPivLu().inverse();
+  mbrt::invert_with_pivoting(g.bar.D);
 }
 
 // (g, x) => (x): x := G^-1 x by forward and backward substitution.

@@ -19,6 +19,7 @@ inline constexpr int kRigidBodies = 0;
 inline constexpr int kParticles = 1;
 inline constexpr int kConstraintBlocks = 1;  // joints, then drivers
 inline constexpr int kConstraintRows = 1;
+inline constexpr int kParts = 1;  // subsystems stepped in parallel (docs/parallel.md)
 
 inline constexpr std::array<mbrt::BodyInfo, kBodies> kBodyInfo{{
     {"bob", false, 0},
@@ -142,6 +143,10 @@ State initial_state() noexcept;
 mbrt::StepStatus step(State& s, Workspace& w) noexcept;
 // The same with a workspace on the stack, for tools and tests.
 mbrt::StepStatus step(State& s) noexcept;
+
+// The serial step: no worker threads to start (docs/parallel.md).
+inline void start_workers() {}
+inline void stop_workers() noexcept {}
 
 mbrt::Energy energy(const State& s) noexcept;
 mbrt::ConstraintViolation constraint_violation(const State& s) noexcept;

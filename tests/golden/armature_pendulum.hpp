@@ -20,6 +20,7 @@ inline constexpr int kRigidBodies = 1;
 inline constexpr int kParticles = 0;
 inline constexpr int kConstraintBlocks = 1;  // joints, then drivers
 inline constexpr int kConstraintRows = 5;
+inline constexpr int kParts = 1;  // subsystems stepped in parallel (docs/parallel.md)
 
 inline constexpr std::array<mbrt::BodyInfo, kBodies> kBodyInfo{{
     {"rod", true, 0},
@@ -125,6 +126,10 @@ State initial_state() noexcept;
 mbrt::StepStatus step(State& s, Workspace& w) noexcept;
 // The same with a workspace on the stack, for tools and tests.
 mbrt::StepStatus step(State& s) noexcept;
+
+// The serial step: no worker threads to start (docs/parallel.md).
+inline void start_workers() {}
+inline void stop_workers() noexcept {}
 
 // (s) => (s.rigid_acceleration, s.lambda): the body accelerations and
 // multipliers that go with the joint coordinates.

@@ -638,26 +638,26 @@ static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem&
   g.pin_c.D = c.pin_c.rows.J1 * c0.pin_c.mbt_rocker + kNewtonShift * Eigen::Matrix<double, 2, 2>::Identity();
   g.pin_b.L_pin_c = c.pin_b.rows.J2 * c0.pin_c.mbt_rocker;
   g.pin_c.U_pin_b = c.pin_c.rows.J1 * c0.pin_b.mbt_rocker;
-  g.pin_c.D = g.pin_c.D.partialPivLu().inverse();
+  mbrt::invert_with_pivoting(g.pin_c.D);
   g.pin_b.L_pin_c = g.pin_b.L_pin_c * g.pin_c.D;
   // pin_b
   g.pin_b.D = c.pin_b.rows.J1 * c0.pin_b.mbt_coupler + c.pin_b.rows.J2 * c0.pin_b.mbt_rocker + kNewtonShift * Eigen::Matrix<double, 2, 2>::Identity()
       - g.pin_b.L_pin_c * g.pin_c.U_pin_b;
   g.pin_a.L_pin_b = c.pin_a.rows.J2 * c0.pin_b.mbt_coupler;
   g.pin_b.U_pin_a = c.pin_b.rows.J1 * c0.pin_a.mbt_coupler;
-  g.pin_b.D = g.pin_b.D.partialPivLu().inverse();
+  mbrt::invert_with_pivoting(g.pin_b.D);
   g.pin_a.L_pin_b = g.pin_a.L_pin_b * g.pin_b.D;
   // pin_o
   g.pin_o.D = c.pin_o.rows.J2 * c0.pin_o.mbt_crank + kNewtonShift * Eigen::Matrix<double, 2, 2>::Identity();
   g.pin_a.L_pin_o = c.pin_a.rows.J1 * c0.pin_o.mbt_crank;
   g.pin_o.U_pin_a = c.pin_o.rows.J2 * c0.pin_a.mbt_crank;
-  g.pin_o.D = g.pin_o.D.partialPivLu().inverse();
+  mbrt::invert_with_pivoting(g.pin_o.D);
   g.pin_a.L_pin_o = g.pin_a.L_pin_o * g.pin_o.D;
   // pin_a
   g.pin_a.D = c.pin_a.rows.J1 * c0.pin_a.mbt_crank + c.pin_a.rows.J2 * c0.pin_a.mbt_coupler + kNewtonShift * Eigen::Matrix<double, 2, 2>::Identity()
       - g.pin_a.L_pin_b * g.pin_b.U_pin_a
       - g.pin_a.L_pin_o * g.pin_o.U_pin_a;
-  g.pin_a.D = g.pin_a.D.partialPivLu().inverse();
+  mbrt::invert_with_pivoting(g.pin_a.D);
 }
 
 // (g, x) => (x): x := G^-1 x by forward and backward substitution.

@@ -200,7 +200,7 @@ static void drift(State& s) noexcept {
 static void factorize_newton(const ConstraintSystem& c0, const ConstraintSystem& c, NewtonMatrix& g) noexcept {
   // tip
   g.tip.D = c.tip.rows.J2 * c0.tip.mbt_top + kNewtonShift * Eigen::Matrix<double, 3, 3>::Identity();
-  g.tip.D = g.tip.D.partialPivLu().inverse();
+  mbrt::invert_with_pivoting(g.tip.D);
 }
 
 // (g, x) => (x): x := G^-1 x by forward and backward substitution.
