@@ -564,8 +564,10 @@ def parallel_speedup(out):
     interface = rows("parallel_interface.csv")
     if interface is None:
         return
+    if os.path.exists(os.path.join(RESULTS, "parallel_interface.machine.txt")):
+        provenance(out, "parallel_interface")
     paragraph(out,
-        "The interface by preconditioned conjugate gradients against its factor (same command): median ns per "
+        "The interface by preconditioned conjugate gradients against its factor (the command just above): median ns per "
         "step on one thread (`--serial`, the methods' work), the largest velocity violation, and the largest "
         "difference of the final positions and velocities from the factorized interface's.")
     table(out, ["model", "parts", "interface rows", "method", "iterations", "preconditioner", "ns per step",

@@ -213,7 +213,8 @@ Partition plan_partition(const Model& model, const Analysis& a, const Specializa
   if (p.parts < asked || fewest < std::max(1, least)) {
     return serial(std::to_string(asked) + " parts would hold " + std::to_string(fewest) +
                   " constraint rows in the smallest; below " + std::to_string(least) +
-                  " per part (solver.parallel_min_rows) the threads' synchronisation costs more than they save");
+                  " per part (solver.parallel_min_rows) the fork and join of the step's phases would be a large share of "
+                  "its work");
   }
   p.pcg = model.solver.parallel_interface == "pcg" && p.interface_rows > 0;
   p.pcg_iterations = model.solver.pcg_iterations > 0 ? model.solver.pcg_iterations : p.interface_rows;

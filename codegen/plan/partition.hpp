@@ -30,9 +30,10 @@ struct Partition {
   bool interface(int block) const { return block_part[static_cast<size_t>(block)] == parts; }
 };
 
-// Constraint rows per part below which the parallel step does not pay: the
-// fork and join of its phases cost more than the part saves (measured,
-// timing/parallel_speedup; docs/parallel.md).
+// Constraint rows per part below which the step stays serial: there the
+// fixed cost of the phases' fork and join (about thirty a step, 0.1 to 2 us
+// each) is a large share of a part's work. Above it, whether the parallel
+// step pays depends on the machine (docs/parallel.md, "When it pays").
 inline constexpr int kMinRowsPerPart = 96;
 
 // Splits the blocks into `parts` parts of about equal rows along a

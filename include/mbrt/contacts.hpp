@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "mbrt/flag.hpp"
 #include "mbrt/contact_geometry.hpp"
 #include "mbrt/contact_trials.hpp"
 #include "mbrt/mechanism_response.hpp"
@@ -100,17 +101,16 @@ void gauss_seidel(const std::array<ContactPoint, N>& data, const Eigen::Matrix<d
       const Eigen::Vector2d trial = q.template tail<2>() - tangent_inverse[static_cast<std::size_t>(l)] * u.template tail<2>();
       const double limit = limit_factor[static_cast<std::size_t>(l)] * q[0];
       const bool holds = trial.norm() <= limit;
-      const double sticks = static_cast<double>(holds);
+      const double sticks = flag(holds);
       // Both candidates computed and blended by 0/1 weights, not picked by a
       // branch: the same instructions whatever sticks or slides.
       const Eigen::Vector2d against_slip = -u.template tail<2>();
-      const double by_slip = static_cast<double>(kinetic_half & (against_slip.squaredNorm() > 0.0));
+      const double by_slip = flag(kinetic_half & (against_slip.squaredNorm() > 0.0));
       const Eigen::Vector2d slip = by_slip * against_slip + (1.0 - by_slip) * trial;
       const Eigen::Vector2d at_limit = limit / at_least(slip.norm(), 1e-300) * slip;
       q.template tail<2>() = sticks * trial + (1.0 - sticks) * at_limit;
-      // From the two conditions' bits, not `sticks * (q[0] > 0)`, which the
-      // compiler may turn into a branch (sticks is 0 or 1).
-      stuck[i] = static_cast<double>(holds & (q[0] > 0.0));
+      // From the two conditions' bits (mbrt/flag.hpp), not `sticks * (q[0] > 0)`.
+      stuck[i] = flag(holds & (q[0] > 0.0));
       p.template segment<3>(3 * l) = q;
     }
   }
@@ -181,7 +181,7 @@ ContactSetup<M> contact_setup(typename M::State& s, const ContactForces<M::kCont
   for (std::size_t i = 0; i < N; ++i) {
     const ContactPoint& c = M::kContactPoints[i];
     problem.frame[i] = frame_of(c, setup.bodies[i]);
-    problem.active[i] = static_cast<double>(problem.frame[i].gap <= 0.0);
+    problem.active[i] = flag(problem.frame[i].gap <= 0.0);
     const Vec3 u = point_velocity(c, setup.bodies[i], problem.frame[i]);
     problem.start_velocity[i] = u;
     // A bounce (Newton's law, separation = e approach) at the approach speed
@@ -190,10 +190,10 @@ ContactSetup<M> contact_setup(typename M::State& s, const ContactForces<M::kCont
     // end-of-step speed averaged over it, which leaves bounce heights unbiased.
     const double average = 0.5 * (start_normal_velocity[i] + u[0]);
     const double bounce = -c.restitution * average + 0.5 * (u[0] - start_normal_velocity[i]);
-    const double target = static_cast<double>(u[0] < -M::kBounceSpeed) * positive_part(bounce);
+    const double target = flag(u[0] < -M::kBounceSpeed) * positive_part(bounce);
     problem.target[i] = target;
     problem.to_reach[i] = Vec3(target, 0.0, 0.0) - u;
-    const double was_stuck = static_cast<double>(out.stuck[i] > 0.0);
+    const double was_stuck = flag(out.stuck[i] > 0.0);
     problem.limit_factor[i] = was_stuck * c.mu_static + (1.0 - was_stuck) * c.mu_kinetic;
   }
   return setup;
@@ -232,7 +232,7 @@ void solve_group(const Eigen::Matrix<double, 3 * int(G), 3 * int(G)>& k, const C
   for (int l = 0; l < members(group); ++l) {
     const std::size_t i = static_cast<std::size_t>(group[static_cast<std::size_t>(l)]);
     const std::array<const Vec3*, 3> options{&held[i], &slid[i], &swept[i]};
-    const std::array<double, 3> stuck_options{static_cast<double>(held[i][0] > 0.0) * problem.active[i], 0.0, swept_stuck[i]};
+    const std::array<double, 3> stuck_options{flag(held[i][0] > 0.0) * problem.active[i], 0.0, swept_stuck[i]};
     impulse[i] = *options[static_cast<std::size_t>(pick)];
     stuck[i] = stuck_options[static_cast<std::size_t>(pick)];
   }

@@ -39,6 +39,7 @@
 
 #include <Eigen/Core>
 
+#include "mbrt/flag.hpp"
 #include "mbrt/dense_cholesky.hpp"
 
 namespace mbrt::schemes {
@@ -119,13 +120,13 @@ Values<n> solve_impulses(const Coupling<n>& k, const Values<n>& v0, const Values
   }
   Values<n> stuck, minus_rate;
   for (std::size_t i = 0; i < n; ++i) {
-    stuck[i] = static_cast<double>(std::abs(p[i]) < limit[i]);
+    stuck[i] = flag(std::abs(p[i]) < limit[i]);
     minus_rate[i] = -rate(i);
   }
   const Values<n> to_stop = solve_stuck(stuck, minus_rate);
   for (std::size_t i = 0; i < n; ++i) {
     p[i] = std::fmin(std::fmax(p[i] + to_stop[i], -limit[i]), limit[i]);
-    stuck[i] = static_cast<double>(std::abs(p[i]) < limit[i]);
+    stuck[i] = flag(std::abs(p[i]) < limit[i]);
   }
   return stuck;
 }
@@ -184,7 +185,7 @@ void joint_friction(typename M::State& s, typename M::Workspace& w) noexcept {
   for (std::size_t i = 0; i < n; ++i) {
     // A joint at rest at the step's start (stuck, or started at rest) holds
     // up to its static limit; a sliding one feels the kinetic limit.
-    at_rest[i] = static_cast<double>((s.stuck[i] == 1.0) | (w.qd0[M::kFrictionDof[i]] == 0.0));
+    at_rest[i] = flag((s.stuck[i] == 1.0) | (w.qd0[M::kFrictionDof[i]] == 0.0));
     static_limit[i] = (M::kFrictionStaticLimit[i] + M::kFrictionStaticPerLoad[i] * load[i]) * h;
     kinetic_limit[i] = (M::kFrictionLimit[i] + M::kFrictionPerLoad[i] * load[i]) * h;
     p[i] = s.friction[i] * h;

@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 
+#include "mbrt/flag.hpp"
 #include "mbrt/constraint_kernels.hpp"
 #include "mbrt/contact_trials.hpp"
 #include "mbrt/joint_coordinates.hpp"
@@ -123,7 +124,7 @@ FrictionSetup<M> friction_setup(const typename M::State& s, typename M::Workspac
     const int ji = static_cast<int>(i);
     f.v0[i] = friction_detail::joint_rate<M>(ji, f.rows[i], u);
     // Bitwise |, not ||: the same instructions whatever the state.
-    f.at_rest[i] = static_cast<double>((s.stuck[i] == 1.0) | (friction_detail::joint_rate<M>(ji, f.start_rows[i], u0) == 0.0));
+    f.at_rest[i] = flag((s.stuck[i] == 1.0) | (friction_detail::joint_rate<M>(ji, f.start_rows[i], u0) == 0.0));
     f.static_limit[i] = (M::kFrictionStaticLimit[i] + M::kFrictionStaticPerLoad[i] * load[i]) * h;
     f.kinetic_limit[i] = (M::kFrictionLimit[i] + M::kFrictionPerLoad[i] * load[i]) * h;
   }
