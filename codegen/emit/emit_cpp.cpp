@@ -652,10 +652,7 @@ void Emitter::factorization(std::ostringstream& o) const {
 
   const auto& order = a_.pattern.order;
   const auto& lower = a_.pattern.lower;
-  auto in_lower = [&](int j, int i) {
-    const auto& v = lower[static_cast<size_t>(j)];
-    return std::find(v.begin(), v.end(), i) != v.end();
-  };
+  const auto in_lower = [&](int j, int i) { return a_.pattern.kept(j, i); };
   OpCount factor = directions;
   body.str("");
   // The parallel step: each part's blocks in its own stream, the interface's in body.
@@ -799,10 +796,7 @@ std::string Emitter::solve_sweep_lines(const std::vector<bool>& in, const std::s
                                        bool forward) const {
   const auto& order = a_.pattern.order;
   const auto& lower = a_.pattern.lower;
-  auto in_lower = [&](int j, int i) {
-    const auto& v = lower[static_cast<size_t>(j)];
-    return std::find(v.begin(), v.end(), i) != v.end();
-  };
+  const auto in_lower = [&](int j, int i) { return a_.pattern.kept(j, i); };
   OpCount solving;
   std::ostringstream body;
   for (size_t pk = 0; forward && pk < order.size(); ++pk) {

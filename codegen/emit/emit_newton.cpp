@@ -33,10 +33,7 @@ void Emitter::newton_matrix_type(std::ostringstream& o) const {
 void Emitter::newton_matrix(std::ostringstream& o) const {
   const auto& order = a_.pattern.order;
   const auto& lower = a_.pattern.lower;
-  auto coupled = [&](int j, int i) {  // block (i, j) of the factor is kept, j before i in the order
-    const auto& v = lower[static_cast<size_t>(j)];
-    return std::find(v.begin(), v.end(), i) != v.end();
-  };
+  auto coupled = [&](int j, int i) { return a_.pattern.kept(j, i); };  // block (i, j) kept, j before i
   // Block (i, k) of G: B_i(q*) from c, M^-1 B_k(q(t))^T from c0.
   auto g_block = [&](int i, int k) { return s_block(i, k, "c0"); };
   auto lo = [&](int i, int k) { return "g." + jname(i) + ".L_" + jname(k); };

@@ -7,16 +7,6 @@
 
 namespace mbrt::codegen {
 
-int Emitter::phase_part(int j) const {
-  const Partition& p = a_.partition;
-  if (!p.interface(j)) return p.block_part[static_cast<size_t>(j)];
-  // Interface blocks have no part; in phases without coupling any part may
-  // take them: one each in turn.
-  int before = 0;
-  for (int i = 0; i < j; ++i) before += p.interface(i) ? 1 : 0;
-  return before % p.parts;
-}
-
 std::string Emitter::parallel_region(const std::vector<std::string>& part_lines, const std::string& enter,
                                      const std::string& leave) const {
   const auto indented = [](const std::string& lines, const std::string& by) {
@@ -49,10 +39,7 @@ std::string Emitter::parallel_region(const std::vector<std::string>& part_lines,
 std::string Emitter::interface_pcg_lines(OpCount* count) const {
   const auto& order = a_.pattern.order;
   const auto& lower = a_.pattern.lower;
-  const auto in_lower = [&](int j, int i) {
-    const auto& v = lower[static_cast<size_t>(j)];
-    return std::find(v.begin(), v.end(), i) != v.end();
-  };
+  const auto in_lower = [&](int j, int i) { return a_.pattern.kept(j, i); };
   std::vector<int> interface;
   std::vector<int> offset(static_cast<size_t>(blocks()), 0);
   int size = 0;

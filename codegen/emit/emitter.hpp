@@ -250,7 +250,7 @@ class Emitter {
   bool parallel() const { return a_.partition.parts > 1; }
   int parts() const { return a_.partition.parts; }
   bool interface_block(int j) const { return parallel() && a_.partition.interface(j); }
-  int phase_part(int j) const;  // the part that runs block j in phases without coupling
+  int phase_part(int j) const { return a_.partition.phase_part[static_cast<size_t>(j)]; }
   int body_part(int b) const { return a_.partition.body_part[static_cast<size_t>(b)]; }
   bool pcg_interface() const { return parallel() && a_.partition.pcg; }
   // solve()'s interface by preconditioned conjugate gradients (the parts' forward sweeps done).

@@ -4,6 +4,7 @@
 // the scene needs at all.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,10 @@ struct InputPlan {
 struct FactorPattern {
   std::vector<int> order;                   // joints in elimination order
   std::vector<std::vector<int>> lower;      // lower[k]: joints i eliminated after k with L(i,k) != 0
+  bool kept(int k, int i) const {           // L(i, k) is formed: i in lower[k]
+    const auto& v = lower[static_cast<size_t>(k)];
+    return std::find(v.begin(), v.end(), i) != v.end();
+  }
   std::vector<std::vector<int>> coupled;    // coupled[j]: joints sharing a moving body with j (S(i,j) != 0)
   int fill_blocks = 0;                      // blocks of L that are zero in S
 };

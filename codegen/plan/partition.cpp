@@ -91,6 +91,11 @@ Partition partition_blocks(const std::vector<ConstraintBlock>& blocks, int bodie
       }
     }
   }
+  p.phase_part = p.block_part;
+  int shared_out = 0;
+  for (int& part : p.phase_part) {
+    if (part == p.parts) part = shared_out++ % p.parts;
+  }
   p.part_rows.assign(static_cast<size_t>(p.parts), 0);
   for (int j = 0; j < n; ++j) {
     const int part = p.block_part[static_cast<size_t>(j)];

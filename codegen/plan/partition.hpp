@@ -18,6 +18,10 @@ struct Partition {
   int requested = 1;            // solver.parallel_parts
   std::vector<int> block_part;  // per constraint block: its part, or `parts` for the interface
   std::vector<int> body_part;   // per body: the part that updates it in the per-body phases
+  // Per block: the part that runs it in phases without coupling (rows,
+  // directions, Jacobian products): its own, or for interface blocks one
+  // part each in turn.
+  std::vector<int> phase_part;
   int interface_blocks = 0;
   int interface_rows = 0;
   std::vector<int> part_rows;   // constraint rows per part, the interface's not counted
