@@ -566,6 +566,51 @@ solver: {pcg_preconditioner: jacobi}
                     "solver.pcg_preconditioner", 4, "expected one of: block, diagonal, got 'jacobi'");
 }
 
+// A rod on a pin driven by the given function (for the driver-function cases).
+std::string driven_pin(const std::string& function) {
+  return "name: m\nbodies:\n  - {name: a, mass: 1, inertia: [1, 1, 1]}\njoints:\n"
+         "  - {name: pin, type: revolute, body1: ground, body2: a, point: [0, 0, 0], axis: [0, 0, 1]}\n"
+         "drivers:\n  - name: motor\n    type: joint_angle\n    joint: pin\n    function:\n" + function;
+}
+
+TEST_CASE("a piecewise driver function parses its pieces and is checked for continuity") {
+  // t^2 up to 1 s, then 2 t - 1 plus harmonics whose value and rate vanish at t = 1.
+  const Model m = parse_model(driven_pin(R"(      pieces:
+        - {until: 1, polynomial: [0, 0, 1]}
+        - polynomial: [-1, 2]
+          harmonics: [{amplitude: 0.1, omega: 6.283185307179586}, {amplitude: -0.05, omega: 12.566370614359172}]
+)"), "m.yaml");
+  const TimeFunction& f = m.drivers.at(0).function;
+  REQUIRE(f.pieces.size() == 2);
+  CHECK(f.pieces[0].until == 1.0);
+  CHECK(std::isinf(f.pieces[1].until));
+  REQUIRE(f.pieces[1].harmonics.size() == 2);
+  CHECK(f.pieces[1].harmonics[1].amplitude == -0.05);
+  CHECK(f.pieces[1].harmonics[1].phase == 0.0);
+  CHECK(evaluate(f, 0.5).f == doctest::Approx(0.25));
+  const double t = 1.3, w = 2 * M_PI;
+  CHECK(evaluate(f, t).f == doctest::Approx(2 * t - 1 + 0.1 * std::sin(w * t) - 0.05 * std::sin(2 * w * t)));
+  CHECK(evaluate(f, t).ddf == doctest::Approx(-0.1 * w * w * std::sin(w * t) + 0.2 * w * w * std::sin(2 * w * t)));
+  CHECK_MODEL_ERROR(driven_pin("      pieces:\n        - {until: 1, polynomial: [0, 0, 1]}\n        - {polynomial: [0, 2]}\n"),
+                    "drivers[0].function.pieces[1]", 13,
+                    "pieces 0 and 1 give different values at t = 1 s (1 and 2): a driver's value and rate must be continuous");
+  CHECK_MODEL_ERROR(driven_pin("      pieces:\n        - {until: 1, polynomial: [0, 0, 1]}\n        - {polynomial: [-2, 3]}\n"),
+                    "drivers[0].function.pieces[1]", 13, "give different rates at t = 1 s (2 and 3)");
+  CHECK_MODEL_ERROR(driven_pin("      pieces:\n        - {polynomial: [0]}\n        - {polynomial: [0]}\n"),
+                    "drivers[0].function.pieces[0]", 12, "missing required key 'until'");
+  CHECK_MODEL_ERROR(driven_pin("      pieces:\n        - {until: 2, polynomial: [0]}\n        - {until: 1, polynomial: [0]}\n"
+                               "        - {polynomial: [0]}\n"),
+                    "drivers[0].function.pieces[1].until", 13, "pieces must end in increasing time");
+  CHECK_MODEL_ERROR(driven_pin("      pieces:\n        - {until: 1, polynomial: [0]}\n        - {until: 2, polynomial: [0]}\n"),
+                    "drivers[0].function.pieces[1].until", 13, "the last piece runs to the end of time");
+  CHECK_MODEL_ERROR(driven_pin("      pieces:\n        - {until: 1}\n        - {polynomial: [0]}\n"),
+                    "drivers[0].function.pieces[0]", 12, "expected a piece with a polynomial, harmonics or both");
+  CHECK_MODEL_ERROR(driven_pin("      pieces:\n        - {harmonics: [{amplitude: 1}]}\n"),
+                    "drivers[0].function.pieces[0].harmonics[0].omega", 12, "missing required key 'omega'");
+  CHECK_MODEL_ERROR(driven_pin("      {polynomial: [0], pieces: [{polynomial: [0]}]}\n"), "drivers[0].function", 10,
+                    "expected exactly one of: polynomial, sine, pieces");
+}
+
 TEST_CASE("a non-integer euler_updates is rejected") {
   CHECK_MODEL_ERROR(R"(name: m
 bodies:

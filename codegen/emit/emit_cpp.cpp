@@ -1035,6 +1035,7 @@ std::string Emitter::source() const {
   if (a_.skipped.empty()) o << " nothing";
   if (!a_.planar.refusal.empty()) o << "\n// Kept: spatial coordinates, since " << a_.planar.refusal << ".";
   o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n"
+    << (piecewise_drivers() ? "#include <mbrt/piecewise_function.hpp>\n" : "")
     << "#include <mbrt/reactions.hpp>\n#include <mbrt/schemes/"
     << step_header() << ">\n" << (parallel() ? "#include <mbrt/worker_team.hpp>\n" : "") << "\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";

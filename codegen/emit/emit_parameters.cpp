@@ -8,7 +8,35 @@ namespace mbrt::codegen {
 
 namespace {
 
-std::string function_name(const ConstraintBlock& b) { return b.name + (b.function->is_sine ? "_sine" : "_polynomial"); }
+std::string function_name(const ConstraintBlock& b) {
+  return b.name + (b.function->piecewise() ? "_function" : b.function->is_sine ? "_sine" : "_polynomial");
+}
+
+// A piecewise function: each piece's polynomial and harmonic terms, and a
+// function that picks the piece by time.
+void piecewise_function(std::ostringstream& o, const ConstraintBlock& b) {
+  const std::vector<FunctionPiece>& pieces = b.function->pieces;
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const FunctionPiece& p = pieces[i];
+    const std::string n = b.name + "_piece" + std::to_string(i);
+    o << "constexpr std::array<double, " << p.polynomial.size() << "> " << n << "_polynomial{";
+    for (size_t k = 0; k < p.polynomial.size(); ++k) o << (k ? ", " : "") << num(p.polynomial[k]);
+    o << "};\nconstexpr std::array<mbrt::Harmonic, " << p.harmonics.size() << "> " << n << "_harmonics{{";
+    for (size_t k = 0; k < p.harmonics.size(); ++k) {
+      const HarmonicTerm& h = p.harmonics[k];
+      o << (k ? ", " : "") << "{" << num(h.amplitude) << ", " << num(h.omega) << ", " << num(h.phase) << "}";
+    }
+    o << "}};  // amplitude sin(omega t + phase)\n";
+  }
+  o << "inline mbrt::TimeValue " << function_name(b) << "(double t) noexcept {\n";
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const std::string n = b.name + "_piece" + std::to_string(i);
+    const std::string value = "mbrt::polynomial_and_harmonics(" + n + "_polynomial, " + n + "_harmonics, t);\n";
+    if (i + 1 < pieces.size()) o << "  if (t < " << num(pieces[i].until) << ") return " << value;
+    else o << "  return " << value;
+  }
+  o << "}\n";
+}
 
 }  // namespace
 
@@ -121,6 +149,10 @@ void Emitter::spring_constant(std::ostringstream& o, const Force& f, const Force
   }
 }
 
+bool Emitter::piecewise_drivers() const {
+  return std::any_of(m_.drivers.begin(), m_.drivers.end(), [](const Driver& d) { return d.function.piecewise(); });
+}
+
 bool Emitter::tunable_driver(int driver) const {
   return std::any_of(params_.begin(), params_.end(), [&](const Parameter& p) {
     return p.target == ParameterTarget::driver_coefficient && p.index == driver;
@@ -129,6 +161,10 @@ bool Emitter::tunable_driver(int driver) const {
 
 void Emitter::driver_function_constant(std::ostringstream& o, const ConstraintBlock& b) const {
   const TimeFunction& fn = *b.function;
+  if (fn.piecewise()) {
+    piecewise_function(o, b);
+    return;
+  }
   const auto coefficient = [&](int k, double folded) {
     return value_of(ParameterTarget::driver_coefficient, b.driver, k, folded, "p");
   };
@@ -154,6 +190,7 @@ void Emitter::driver_function_constant(std::ostringstream& o, const ConstraintBl
 }
 
 std::string Emitter::driver_function_value(const ConstraintBlock& b) const {
+  if (b.function->piecewise()) return function_name(b) + "(s.t)";
   return std::string(b.function->is_sine ? "mbrt::sine(" : "mbrt::polynomial(") + function_name(b) +
          (tunable_driver(b.driver) ? "(s.params)" : "") + ", s.t)";
 }

@@ -188,6 +188,8 @@ class Emitter {
   // A driver block's function of time: its constant NAME_sine or NAME_polynomial,
   // or a function of the parameters where its coefficients are tunable ...
   void driver_function_constant(std::ostringstream& o, const ConstraintBlock& b) const;
+  // Some driver's function is piecewise (the step includes mbrt/piecewise_function.hpp).
+  bool piecewise_drivers() const;
   // ... and its value and derivatives at s.t in constraint_rows.
   std::string driver_function_value(const ConstraintBlock& b) const;
   std::string motion(int i) const {

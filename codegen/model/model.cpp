@@ -41,4 +41,26 @@ double joint_rate_at_start(const Model& model, const Joint& joint) {
   return axis.dot(v[1] - v[0] - w[0].cross(r[1] - r[0]));
 }
 
+mbrt::TimeValue evaluate(const FunctionPiece& piece, double t) {
+  mbrt::TimeValue v = mbrt::polynomial(piece.polynomial.data(), piece.polynomial.size(), t);
+  for (const HarmonicTerm& h : piece.harmonics) {
+    const mbrt::TimeValue s = mbrt::sine({h.amplitude, h.omega, h.phase, 0.0}, t);
+    v.f += s.f;
+    v.df += s.df;
+    v.ddf += s.ddf;
+  }
+  return v;
+}
+
+mbrt::TimeValue evaluate(const TimeFunction& f, double t) {
+  if (f.piecewise()) {
+    for (const FunctionPiece& piece : f.pieces) {
+      if (t < piece.until) return evaluate(piece, t);
+    }
+    return evaluate(f.pieces.back(), t);
+  }
+  if (f.is_sine) return mbrt::sine({f.amplitude, f.omega, f.phase, f.offset}, t);
+  return mbrt::polynomial(f.polynomial.data(), f.polynomial.size(), t);
+}
+
 }  // namespace mbrt::codegen

@@ -3,6 +3,7 @@
 // axes are derived later by the analysis.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,7 @@
 #include <Eigen/Core>
 
 #include <mbrt/scheme.hpp>
+#include <mbrt/time_functions.hpp>
 
 #include "driver_types.hpp"
 #include "force_types.hpp"
@@ -93,11 +95,27 @@ struct Joint {
   // rolling_ball: the sphere's centre (world, t = 0) is `point`, default the COM.
 };
 
-// f(t) of a driver: a polynomial sum c[k] t^k, or offset + amplitude sin(omega t + phase).
+// One term amplitude sin(omega t + phase) of a function piece.
+struct HarmonicTerm {
+  double amplitude = 0.0, omega = 0.0, phase = 0.0;
+};
+
+// One piece of a piecewise f(t): sum c[k] t^k plus harmonic terms, for
+// t < until (the last piece: to the end of time).
+struct FunctionPiece {
+  double until = std::numeric_limits<double>::infinity();
+  std::vector<double> polynomial;
+  std::vector<HarmonicTerm> harmonics;
+};
+
+// f(t) of a driver: a polynomial sum c[k] t^k, offset + amplitude sin(omega
+// t + phase), or (pieces non-empty) pieces, each valid until its time.
 struct TimeFunction {
   bool is_sine = false;
   std::vector<double> polynomial;
   double amplitude = 0.0, omega = 0.0, phase = 0.0, offset = 0.0;
+  std::vector<FunctionPiece> pieces;
+  bool piecewise() const { return !pieces.empty(); }
 };
 
 struct Driver {
@@ -249,6 +267,11 @@ double joint_rate_at_start(const Model& model, const Joint& joint);
 // Reads and validates a model file. Throws ModelError naming the file, line,
 // key and what was expected.
 Model load_model(const std::string& path);
+
+// A driver function's value and derivatives at t, and one piece's (the
+// generation-time evaluations; the step's are generated).
+mbrt::TimeValue evaluate(const TimeFunction& f, double t);
+mbrt::TimeValue evaluate(const FunctionPiece& piece, double t);
 
 // Same from text (the file name is used for messages only).
 Model parse_model(const std::string& yaml_text, const std::string& file_name);

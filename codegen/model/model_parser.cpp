@@ -29,8 +29,10 @@ const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers
 const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
                         "orientation", "velocity", "angular_velocity"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
-const Keys kFunctionKeys = {"polynomial", "sine"};
+const Keys kFunctionKeys = {"polynomial", "sine", "pieces"};
 const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
+const Keys kPieceKeys = {"until", "polynomial", "harmonics"};
+const Keys kHarmonicKeys = {"amplitude", "omega", "phase"};
 // Fields every generated LCM message has besides the signals.
 const Keys kMessageFields = {"utime", "seq", "state_utime", "command_seq", "t"};
 const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
@@ -744,15 +746,87 @@ Force parse_force(const Value& item, const Model& model) {
   return f;
 }
 
+std::vector<double> read_coefficients(const Value& v) {
+  if (!v.node.IsSequence() || v.node.size() == 0) fail_expected(v, "a non-empty list of coefficients c0, c1, ...");
+  std::vector<double> c;
+  for (std::size_t i = 0; i < v.node.size(); ++i) c.push_back(read_number(element(v, i)));
+  return c;
+}
+
+FunctionPiece parse_piece(const Value& v, bool last) {
+  const Section s(v, kPieceKeys);
+  FunctionPiece piece;
+  if (auto until = s.find("until")) {
+    if (last) fail(*until, "the last piece runs to the end of time: remove its 'until'");
+    piece.until = read_number(*until);
+  } else if (!last) {
+    fail(v, "missing required key 'until' (every piece but the last ends at a time, s)");
+  }
+  const auto poly = s.find("polynomial");
+  const auto harmonics = s.find("harmonics");
+  if (!poly && !harmonics) fail_expected(v, "a piece with a polynomial, harmonics or both");
+  if (poly) piece.polynomial = read_coefficients(*poly);
+  if (harmonics) {
+    if (!harmonics->node.IsSequence() || harmonics->node.size() == 0) {
+      fail_expected(*harmonics, "a non-empty list of {amplitude, omega, phase}");
+    }
+    for (std::size_t i = 0; i < harmonics->node.size(); ++i) {
+      const Section h(element(*harmonics, i), kHarmonicKeys);
+      HarmonicTerm term;
+      term.amplitude = read_number(h.get("amplitude"));
+      term.omega = read_number(h.get("omega"));
+      if (auto x = h.find("phase")) term.phase = read_number(*x);
+      piece.harmonics.push_back(term);
+    }
+  }
+  return piece;
+}
+
+// A driver's prescribed coordinate and its rate must not jump where one piece
+// hands over to the next: the constraint would demand an infinite force.
+void check_continuity(const Value& pieces, const std::vector<FunctionPiece>& p) {
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+    const double t = p[i].until;
+    const mbrt::TimeValue a = evaluate(p[i], t), b = evaluate(p[i + 1], t);
+    const auto differ = [](double x, double y) { return std::abs(x - y) > 1e-6 * std::max({1.0, std::abs(x), std::abs(y)}); };
+    const char* what = differ(a.f, b.f) ? "value" : differ(a.df, b.df) ? "rate" : nullptr;
+    if (what == nullptr) continue;
+    std::ostringstream m;
+    m.precision(10);
+    m << "pieces " << i << " and " << i + 1 << " give different " << what << "s at t = " << t << " s ("
+      << (what[0] == 'v' ? a.f : a.df) << " and " << (what[0] == 'v' ? b.f : b.df)
+      << "): a driver's value and rate must be continuous";
+    fail(element(pieces, i + 1), m.str());
+  }
+}
+
 TimeFunction parse_function(const Value& v) {
   const Section s(v, kFunctionKeys);
   TimeFunction f;
   const auto poly = s.find("polynomial");
   const auto sine = s.find("sine");
-  if (poly.has_value() == sine.has_value()) fail_expected(v, "exactly one of: polynomial, sine");
+  const auto pieces = s.find("pieces");
+  if (int(poly.has_value()) + int(sine.has_value()) + int(pieces.has_value()) != 1) {
+    fail_expected(v, "exactly one of: polynomial, sine, pieces");
+  }
   if (poly) {
-    if (!poly->node.IsSequence() || poly->node.size() == 0) fail_expected(*poly, "a non-empty list of coefficients c0, c1, ...");
-    for (std::size_t i = 0; i < poly->node.size(); ++i) f.polynomial.push_back(read_number(element(*poly, i)));
+    f.polynomial = read_coefficients(*poly);
+    return f;
+  }
+  if (pieces) {
+    if (!pieces->node.IsSequence() || pieces->node.size() == 0) {
+      fail_expected(*pieces, "a non-empty list of pieces {until, polynomial, harmonics}");
+    }
+    const std::size_t n = pieces->node.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Value item = element(*pieces, i);
+      f.pieces.push_back(parse_piece(item, i + 1 == n));
+      if (i > 0 && !(f.pieces[i].until > f.pieces[i - 1].until) && i + 1 < n) {
+        fail(Section(item, kPieceKeys).get("until"), "pieces must end in increasing time (the piece before ends at " +
+                                                         std::to_string(f.pieces[i - 1].until) + " s)");
+      }
+    }
+    check_continuity(*pieces, f.pieces);
     return f;
   }
   const Section p(*sine, kSineKeys);

@@ -55,6 +55,7 @@ std::vector<Parameter> candidates(const Model& model) {
     const TimeFunction& f = d.function;
     const int n = static_cast<int>(i);
     const std::string prefix = d.name + ".function.";
+    if (f.piecewise()) continue;  // not tunable: its pieces' coefficients are fixed at generation
     if (f.is_sine) {
       const double values[] = {f.amplitude, f.omega, f.phase, f.offset};
       for (int k = 0; k < 4; ++k) out.push_back({prefix + kSine[k], ParameterTarget::driver_coefficient, n, k, values[k], {}, {}});
@@ -72,7 +73,7 @@ std::string keys_help(const Model& model) {
   return "tunable keys are gravity (when the model has it), BODY.mass, BODY.inertia (a diagonal one), BODY.position, "
          "BODY.velocity, BODY.angular_velocity, JOINT.coordinate and JOINT.rate (a revolute or prismatic joint, in "
          "the tree schemes), JOINT.spring (of a joint_spring), forces.N (a spring_damper, N its index in forces), "
-         "DRIVER.function (c0, c1, ... of a polynomial, amplitude, omega, phase, offset of a sine) or one component "
+         "DRIVER.function (c0, c1, ... of a polynomial, amplitude, omega, phase, offset of a sine; not a piecewise one) or one component "
          "of them, e.g. " +
          (model.bodies.empty() ? std::string("body.mass") : model.bodies.front().name + ".position.x");
 }

@@ -16,11 +16,6 @@
 
 namespace mbrt::codegen {
 
-mbrt::TimeValue evaluate(const TimeFunction& f, double t) {
-  if (f.is_sine) return mbrt::sine({f.amplitude, f.omega, f.phase, f.offset}, t);
-  return mbrt::polynomial(f.polynomial.data(), f.polynomial.size(), t);
-}
-
 namespace {
 
 struct Pose {

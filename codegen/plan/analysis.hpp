@@ -173,7 +173,4 @@ Analysis analyse(const Model& model, const Specializations& specialize = {});
 // 1 kHz, docs/staggered-tree.md), else staggered-pcst.
 mbrt::Scheme default_scheme(const Model& model);
 
-// A time function's value and derivatives at t (generation-time checks).
-mbrt::TimeValue evaluate(const TimeFunction& f, double t);
-
 }  // namespace mbrt::codegen
