@@ -266,6 +266,15 @@ void Emitter::frame_constants(std::ostringstream& o) const {
         break;
     }
   }
+  if (!a_.beams.empty()) o << "\n// Flexible bodies' beam elements: ends, axes in body axes, length, stiffnesses, damping.\n";
+  for (size_t e = 0; e < a_.beams.size(); ++e) {
+    const mbrt::BeamElement& b = a_.beams[e];
+    const BeamElementSpec& spec = m_.beam_elements[e];
+    o << "const mbrt::BeamElement beam_" << e << "{" << vec3(b.s1) << ", " << vec3(b.s2) << ",\n    " << mat3(b.Q1)
+      << ",\n    " << mat3(b.Q2) << ",\n    " << num(b.l0) << ", " << num(b.EA) << ", " << num(b.GAy) << ", "
+      << num(b.GAz) << ", " << num(b.GJ) << ", " << num(b.EIy) << ", " << num(b.EIz) << ", " << num(b.damping)
+      << "};  // " << m_.body_name(spec.body1) << " - " << m_.body_name(spec.body2) << "\n";
+  }
 }
 
 // The types of the step's working memory, in the header's namespace detail
@@ -529,6 +538,16 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
         break;
       case ForceType::joint_spring: joint_spring_load(o, f, n); break;
     }
+  }
+  for (size_t e = 0; e < a_.beams.size(); ++e) {
+    const BeamElementSpec& spec = m_.beam_elements[e];
+    const int b1 = spec.body1, b2 = spec.body2;
+    o << "  {  // beam element " << m_.body_name(b1) << " - " << m_.body_name(b2) << " (ends at the centres of mass)\n"
+      << "    const mbrt::BeamElementLoad e = mbrt::beam_element(beam_" << e << ", " << motion(b1) << ", " << motion(b2)
+      << ");\n"
+      << "    l.w" << at(b1) << ".f -= e.f2;\n    l.w" << at(b1) << ".tau += e.tau1;\n"
+      << "    l.w" << at(b2) << ".f += e.f2;\n    l.w" << at(b2) << ".tau += e.tau2;\n"
+      << "    l.elastic_energy += e.energy;\n  }\n";
   }
   for (size_t i = 0; i < m_.inputs.size(); ++i) input_load(o, m_.inputs[i], a_.inputs[i]);
   o << "}\n\n";
@@ -1035,6 +1054,7 @@ std::string Emitter::source() const {
   if (a_.skipped.empty()) o << " nothing";
   if (!a_.planar.refusal.empty()) o << "\n// Kept: spatial coordinates, since " << a_.planar.refusal << ".";
   o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n"
+    << (a_.beams.empty() ? "" : "#include <mbrt/beam_element.hpp>\n")
     << (piecewise_drivers() ? "#include <mbrt/piecewise_function.hpp>\n" : "")
     << "#include <mbrt/reactions.hpp>\n#include <mbrt/schemes/"
     << step_header() << ">\n" << (parallel() ? "#include <mbrt/worker_team.hpp>\n" : "") << "\n"

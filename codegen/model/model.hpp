@@ -240,6 +240,33 @@ struct TunableKey {
   SourceLocation where;
 };
 
+// A flexible body as a nodal beam (docs/flexible.md): nodes are bodies
+// named NAME_nK (K = 0 at the root to `elements` at the tip, referred to as
+// NAME@root, NAME@tip or NAME@K), joined by beam elements. The beam runs
+// along the body x axis from `position`; y and z are its bending axes.
+struct BeamSection {
+  double EA = 0.0, GAy = 0.0, GAz = 0.0, GJ = 0.0, EIy = 0.0, EIz = 0.0;  // N, N m^2
+  double damping = 0.0;  // s: stiffness-proportional
+};
+
+struct FlexibleBody {
+  std::string name;
+  SourceLocation where;
+  int first_node = 0;  // Model::bodies index of the root node; the others follow
+  int elements = 0;
+  double length = 0.0, rho_A = 0.0, rho_J = 0.0;  // m, kg/m, kg m
+  BeamSection section;
+};
+
+// One element of a nodal beam between two node bodies, through their centres
+// of mass; y is its bending axis `normal` (world, t = 0).
+struct BeamElementSpec {
+  int body1 = kGround, body2 = kGround;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
+  BeamSection section;
+  int flexible = 0;  // Model::flexible index
+};
+
 struct Model {
   std::string name;
   std::string file;  // path as given, for messages
@@ -248,6 +275,8 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Contact> contacts;  // listed under joints: in the file
   std::vector<Force> forces;
+  std::vector<FlexibleBody> flexible;
+  std::vector<BeamElementSpec> beam_elements;  // of the flexible bodies, in their order
   std::vector<Driver> drivers;
   std::vector<Input> inputs;
   std::vector<Output> outputs;

@@ -18,6 +18,8 @@
 #include <Eigen/Eigenvalues>
 #include <yaml-cpp/yaml.h>
 
+#include <mbrt/rotation.hpp>
+
 #include "model.hpp"
 #include "parameters.hpp"
 
@@ -27,7 +29,9 @@ namespace {
 
 const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers", "inputs", "outputs", "solver", "tunable"};
 const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
-                        "orientation", "velocity", "angular_velocity"};
+                        "orientation", "velocity", "angular_velocity", "flexible"};
+const Keys kFlexibleBodyKeys = {"name", "flexible", "position", "orientation", "velocity", "angular_velocity"};
+const Keys kBeamKeys = {"length", "elements", "EA", "GA", "GJ", "EI", "rho_A", "rho_J", "damping"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
 const Keys kFunctionKeys = {"polynomial", "sine", "pieces"};
 const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
@@ -389,14 +393,41 @@ Eigen::Matrix3d read_inertia(const Value& v) {
 
 // ---- model parts ----------------------------------------------------------
 
+// A flexible body's node: NAME@root, NAME@tip or NAME@K (0 <= K <= elements).
+int read_node_ref(const Value& v, const Model& model, const std::string& body, const std::string& node) {
+  Keys names;
+  for (const FlexibleBody& f : model.flexible) {
+    if (f.name != body) {
+      names.push_back(f.name);
+      continue;
+    }
+    int k = -1;
+    if (node == "root") k = 0;
+    else if (node == "tip") k = f.elements;
+    else if (!node.empty() && node.size() < 6 && std::all_of(node.begin(), node.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      k = std::stoi(node);
+    if (k < 0 || k > f.elements) {
+      fail(v, "unknown node '" + excerpt(node) + "' of flexible body '" + body + "' (root, tip or 0 to " +
+                  std::to_string(f.elements) + ")");
+    }
+    return f.first_node + k;
+  }
+  fail(v, "'" + excerpt(body) + "' is not a flexible body" +
+              (names.empty() ? std::string(" (the model has none)") : " (flexible bodies: " + join(names) + ")"));
+}
+
 // "ground" or a declared body; returns kGround or the index in model.bodies.
 int read_body_ref(const Value& v, const Model& model) {
   Keys names = {"ground"};
   for (const auto& b : model.bodies) names.push_back(b.name);
   const std::string s = read_string(v, "a body name (" + join(names) + ")");
   if (s == "ground") return kGround;
+  if (const auto at = s.find('@'); at != std::string::npos) return read_node_ref(v, model, s.substr(0, at), s.substr(at + 1));
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (model.bodies[i].name == s) return static_cast<int>(i);
+  }
+  for (const FlexibleBody& f : model.flexible) {
+    if (f.name == s) fail(v, "'" + s + "' is a flexible body: name one of its nodes, " + s + "@root, " + s + "@tip or " + s + "@K");
   }
   fail(v, "unknown body '" + excerpt(s) + "' (bodies: " + join(names) + ")");
 }
@@ -437,6 +468,71 @@ Body parse_body(const Value& item, std::map<std::string, int>& names_seen) {
   if (auto v = s.find("position")) b.position = read_vector3(*v);
   if (auto v = s.find("velocity")) b.velocity = read_vector3(*v);
   return b;
+}
+
+// One or two numbers: the same value in both bending planes, or y and z.
+std::pair<double, double> read_pair(const Value& v) {
+  if (v.node.IsScalar()) {
+    const double x = read_positive(v);
+    return {x, x};
+  }
+  if (!v.node.IsSequence() || v.node.size() != 2) fail_expected(v, "a number > 0 or a list [y, z] of two");
+  return {read_positive(element(v, 0)), read_positive(element(v, 1))};
+}
+
+// A body with `flexible:` beam data: its nodes become bodies NAME_n0 ...
+// NAME_nN with the beam's mass lumped on them, each carrying its slice's
+// inertia, and its elements join neighbouring nodes (docs/flexible.md).
+void parse_flexible_body(const Value& item, const Section& s, std::map<std::string, int>& names_seen, Model& model) {
+  s.restrict_to(kFlexibleBodyKeys, "a flexible body (its mass and inertia come from the beam)");
+  FlexibleBody f;
+  f.where = item.where;
+  const Value name = s.get("name");
+  f.name = read_identifier(name);
+  check_unique(name, f.name, "body", names_seen);
+  const Section b(s.get("flexible"), kBeamKeys);
+  f.length = read_positive(b.get("length"));
+  f.elements = read_integer_at_least(b.get("elements"), 1);
+  if (f.elements > 200) fail_expected(b.get("elements"), "at most 200 elements");
+  f.rho_A = read_positive(b.get("rho_A"));
+  f.rho_J = read_positive(b.get("rho_J"));
+  f.section.EA = read_positive(b.get("EA"));
+  f.section.GJ = read_positive(b.get("GJ"));
+  std::tie(f.section.EIy, f.section.EIz) = read_pair(b.get("EI"));
+  // Shear stiffness: a solid section's kappa G A is about a third of E A.
+  f.section.GAy = f.section.GAz = f.section.EA / 3;
+  if (auto v = b.find("GA")) std::tie(f.section.GAy, f.section.GAz) = read_pair(*v);
+  if (auto v = b.find("damping")) f.section.damping = read_non_negative(*v);
+  Eigen::Vector4d orientation{1.0, 0.0, 0.0, 0.0};
+  Eigen::Vector3d root = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+  if (auto v = s.find("orientation")) orientation = read_euler_parameters(*v);
+  if (auto v = s.find("position")) root = read_vector3(*v);
+  if (auto v = s.find("velocity")) velocity = read_vector3(*v);
+  if (auto v = s.find("angular_velocity")) w = read_vector3(*v);
+  const Eigen::Matrix3d R = mbrt::rotation_matrix(orientation);
+  const double l = f.length / f.elements;
+  f.first_node = static_cast<int>(model.bodies.size());
+  for (int k = 0; k <= f.elements; ++k) {
+    Body node;
+    node.name = f.name + "_n" + std::to_string(k);
+    node.where = item.where;
+    check_unique(name, node.name, "body", names_seen);
+    const double slice = (k == 0 || k == f.elements) ? l / 2 : l;
+    node.mass = f.rho_A * slice;
+    const double bending = f.rho_J / 2 * slice + node.mass * slice * slice / 12;
+    node.inertia = Eigen::Vector3d(f.rho_J * slice, bending, bending).asDiagonal();
+    node.orientation = orientation;
+    const Eigen::Vector3d arm = R * Eigen::Vector3d(k * l, 0, 0);
+    node.position = root + arm;
+    node.velocity = velocity + (R * w).cross(arm);
+    node.angular_velocity = w;
+    model.bodies.push_back(node);
+  }
+  for (int k = 0; k < f.elements; ++k) {
+    model.beam_elements.push_back({f.first_node + k, f.first_node + k + 1, R.col(1), f.section,
+                                   static_cast<int>(model.flexible.size())});
+  }
+  model.flexible.push_back(f);
 }
 
 // A rolling_disk, rolling_ball or knife_edge: a body on the ground plane.
@@ -1032,7 +1128,10 @@ Model build_model(const YAML::Node& root, const std::string& file) {
   }
   std::map<std::string, int> body_names;
   for (std::size_t i = 0; i < bodies.node.size(); ++i) {
-    model.bodies.push_back(parse_body(element(bodies, i), body_names));
+    const Value item = element(bodies, i);
+    const Section body(item, kBodyKeys);
+    if (body.find("flexible")) parse_flexible_body(item, body, body_names, model);
+    else model.bodies.push_back(parse_body(item, body_names));
   }
 
   if (auto joints = s.find("joints"); joints && !is_empty_or_list(*joints, "a list of joints")) {

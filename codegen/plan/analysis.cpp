@@ -597,6 +597,20 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     }
     a.forces.push_back(plan);
   }
+  for (const BeamElementSpec& e : model.beam_elements) {
+    const Body& b1 = model.bodies[static_cast<size_t>(e.body1)];
+    const Body& b2 = model.bodies[static_cast<size_t>(e.body2)];
+    Eigen::Matrix3d axes;  // the element's, world at t = 0
+    axes.col(0) = (b2.position - b1.position).normalized();
+    axes.col(1) = (e.normal - e.normal.dot(axes.col(0)) * axes.col(0)).normalized();
+    axes.col(2) = axes.col(0).cross(axes.col(1));
+    const BeamSection& c = e.section;
+    a.beams.push_back({Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                       mbrt::rotation_matrix(b1.orientation).transpose() * axes,
+                       mbrt::rotation_matrix(b2.orientation).transpose() * axes, (b2.position - b1.position).norm(), c.EA,
+                       c.GAy, c.GAz, c.GJ, c.EIy, c.EIz, c.damping});
+    if (c.damping != 0.0) a.velocity_dependent_forces = true;
+  }
   for (size_t i = 0; i < model.inputs.size(); ++i) {
     const Input& in = model.inputs[i];
     if (in.type == InputType::motor_torque) {

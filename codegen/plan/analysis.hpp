@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <mbrt/beam_element.hpp>
 #include <mbrt/forces.hpp>
 #include <mbrt/joints.hpp>
 
@@ -139,6 +140,7 @@ struct Analysis {
   bool rheonomic = false;                    // drivers present: explicit time terms
   bool nonholonomic = false;                 // rows on velocities only
   std::vector<ForcePlan> forces;
+  std::vector<mbrt::BeamElement> beams;  // same order as Model::beam_elements
   std::vector<InputPlan> inputs;  // same order as Model::inputs
   std::vector<ContactPlan> contacts;  // same order as Model::contacts
   std::vector<int> mechanism;  // per body: the first body of its mechanism (bodies joined by joints or drivers)

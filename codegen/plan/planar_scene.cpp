@@ -174,6 +174,10 @@ PlanarPlan plan_planar(const Model& model, const Analysis& a) {
     plan.refusal = "the model has contacts (docs/contact.md)";
     return plan;
   }
+  if (!a.beams.empty()) {
+    plan.refusal = "the model has flexible bodies (docs/flexible.md)";
+    return plan;
+  }
   for (const Joint& j : model.joints) {
     if (j.friction.any()) {  // the planar step has no impulse path
       plan.refusal = "the model has joint friction (docs/friction.md)";
