@@ -633,6 +633,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     if (f.type == ForceType::force) load(f.body);
     else load(f.body1), load(f.body2);
   }
+  for (const BeamElementSpec& e : model.beam_elements) load(e.body1), load(e.body2);
   for (const InputPlan& in : a.inputs) load(in.body1), load(in.body2);
   if (!specialize.unloaded_bodies) {
     for (BodyPlan& b : a.bodies) b.loaded = true;

@@ -62,15 +62,15 @@ inline BeamElementLoad beam_element(const BeamElement& e, const BodyMotion& m1, 
   const Vec3 k_rate = T1.transpose() * (m2.pose.R * m2.vel.w - m1.pose.R * m1.vel.w);
   const Vec3 stiffness(e.GJ, e.EIy, e.EIz);
   const Vec3 moment = stiffness.cwiseProduct(k + e.damping * k_rate) / e.l0;
-  // Gradients: dk = (tr(Rr) I - Rr) Q2^T dphi2 / 2 for body 2's body-axis
-  // rotation, -(tr(Rr) I - Rr^T) Q1^T dphi1 / 2 for body 1's; the shear's
+  // Gradients: dk = (tr(Rr) I - Rr^T) Q2^T dphi2 / 2 for body 2's body-axis
+  // rotation, -(tr(Rr) I - Rr) Q1^T dphi1 / 2 for body 1's; the shear's
   // triads turn with their bodies: d(T^T d) = Q^T (R^T d)~ dphi.
   const Mat3 trace_minus = Rr.trace() * Mat3::Identity() - Rr;
   BeamElementLoad out;
   out.f2 = -tension * n - T_mean * shear;
   const Vec3 x1 = m1.pose.R.transpose() * d, x2 = m2.pose.R.transpose() * d;
-  out.tau1 = 0.5 * x1.cross(e.Q1 * shear) + 0.5 * e.Q1 * (trace_minus * moment);
-  out.tau2 = 0.5 * x2.cross(e.Q2 * shear) - 0.5 * e.Q2 * (trace_minus.transpose() * moment);
+  out.tau1 = 0.5 * x1.cross(e.Q1 * shear) + 0.5 * e.Q1 * (trace_minus.transpose() * moment);
+  out.tau2 = 0.5 * x2.cross(e.Q2 * shear) - 0.5 * e.Q2 * (trace_minus * moment);
   out.energy = 0.5 * e.l0 * (e.EA * stretch * stretch + e.GAy * g.y() * g.y() + e.GAz * g.z() * g.z()) +
                0.5 * k.dot(stiffness.cwiseProduct(k)) / e.l0;
   return out;
