@@ -318,7 +318,7 @@ bodies:
 )",
                     "bodies[1].masss", 7,
                     "unknown key 'masss' (expected one of: name, mass, particle, inertia, position, "
-                    "orientation, velocity, angular_velocity)");
+                    "orientation, velocity, angular_velocity, flexible)");
 }
 
 TEST_CASE("an unknown key in a joint is rejected with its line") {
@@ -609,6 +609,60 @@ TEST_CASE("a piecewise driver function parses its pieces and is checked for cont
                     "drivers[0].function.pieces[0].harmonics[0].omega", 12, "missing required key 'omega'");
   CHECK_MODEL_ERROR(driven_pin("      {polynomial: [0], pieces: [{polynomial: [0]}]}\n"), "drivers[0].function", 10,
                     "expected exactly one of: polynomial, sine, pieces");
+}
+
+TEST_CASE("a flexible body becomes nodes with the beam's mass and elements between them") {
+  const Model m = parse_model(R"(name: m
+bodies:
+  - {name: hub, mass: 1, inertia: [1, 1, 1]}
+  - name: boom
+    flexible: {length: 3, elements: 3, EA: 1.0e6, GJ: 50, EI: [100, 200], rho_A: 2, rho_J: 0.01}
+    position: [1, 0, 0]
+    orientation: [0.7071067811865476, 0, 0, 0.7071067811865476]
+    angular_velocity: [0, 0, 2]
+joints:
+  - {name: clamp, type: fixed, body1: hub, body2: boom@root, point: [1, 0, 0]}
+outputs:
+  - {name: tip, type: body_pose, body: boom@tip}
+  - {name: middle, type: body_pose, body: boom@2}
+)", "m.yaml");
+  REQUIRE(m.bodies.size() == 5);
+  REQUIRE(m.flexible.size() == 1);
+  REQUIRE(m.beam_elements.size() == 3);
+  CHECK(m.bodies[1].name == "boom_n0");
+  CHECK(m.bodies[4].name == "boom_n3");
+  // Along the body x axis, turned 90 degrees about z: the nodes go up y.
+  CHECK((m.bodies[4].position - Eigen::Vector3d(1, 3, 0)).norm() < 1e-12);
+  CHECK(m.bodies[1].mass == doctest::Approx(1.0));  // half an element at each end
+  CHECK(m.bodies[2].mass == doctest::Approx(2.0));
+  CHECK((m.bodies[4].velocity - Eigen::Vector3d(-6, 0, 0)).norm() < 1e-12);  // w x r = 2 z x 3 y
+  CHECK(m.beam_elements[0].section.EIy == 100);
+  CHECK(m.beam_elements[0].section.EIz == 200);
+  CHECK(m.beam_elements[0].section.GAy == doctest::Approx(1.0e6 / 3));
+  CHECK(m.joints[0].body2 == 1);
+  CHECK(m.outputs[0].body == 4);
+  CHECK(m.outputs[1].body == 3);
+}
+
+TEST_CASE("bad flexible bodies and node references are rejected naming the key") {
+  const std::string beam = "  - name: boom\n    flexible: {length: 2, elements: 4, EA: 1.0e6, GJ: 50, EI: 100, rho_A: 2, rho_J: 0.01}\n";
+  CHECK_MODEL_ERROR("name: m\nbodies:\n" + beam + "    mass: 3\n", "bodies[0].mass", 5,
+                    "key 'mass' does not apply to a flexible body (its mass and inertia come from the beam)");
+  CHECK_MODEL_ERROR("name: m\nbodies:\n  - name: boom\n    flexible: {length: 2, elements: 0, EA: 1, GJ: 1, EI: 1, rho_A: 1, rho_J: 1}\n",
+                    "bodies[0].flexible.elements", 4, "expected an integer >= 1");
+  CHECK_MODEL_ERROR("name: m\nbodies:\n  - name: boom\n    flexible: {length: 2, elements: 2, EA: 1, GJ: 1, EI: [1, 2, 3], rho_A: 1, rho_J: 1}\n",
+                    "bodies[0].flexible.EI", 4, "expected a number > 0 or a list [y, z] of two");
+  CHECK_MODEL_ERROR("name: m\nbodies:\n  - name: boom\n    flexible: {length: 2, elements: 2, EA: 1, EI: 1, rho_A: 1, rho_J: 1}\n",
+                    "bodies[0].flexible.GJ", 4, "missing required key 'GJ'");
+  CHECK_MODEL_ERROR("name: m\nbodies:\n" + beam + "  - {name: boom_n2, mass: 1, particle: true}\n", "bodies[1].name", 5,
+                    "duplicate body name 'boom_n2'");
+  const std::string joint = "joints:\n  - {name: j, type: spherical, body1: ground, body2: ";
+  CHECK_MODEL_ERROR("name: m\nbodies:\n" + beam + joint + "boom@7, point: [0, 0, 0]}\n", "joints[0].body2", 6,
+                    "unknown node '7' of flexible body 'boom' (root, tip or 0 to 4)");
+  CHECK_MODEL_ERROR("name: m\nbodies:\n" + beam + joint + "beam@tip, point: [0, 0, 0]}\n", "joints[0].body2", 6,
+                    "'beam' is not a flexible body (flexible bodies: boom)");
+  CHECK_MODEL_ERROR("name: m\nbodies:\n" + beam + joint + "boom, point: [0, 0, 0]}\n", "joints[0].body2", 6,
+                    "'boom' is a flexible body: name one of its nodes, boom@root, boom@tip or boom@K");
 }
 
 TEST_CASE("a non-integer euler_updates is rejected") {

@@ -199,6 +199,26 @@ StableStep estimate_stable_step(const Model& m) {
       case ForceType::force: loads = true; break;
     }
   }
+  // A beam element's stiffest mode, as for a chain of equal elements (twice a
+  // single spring's square: a node between two): its stretch or shear
+  // against the nodes' masses, its twist against their moments about the
+  // element, its bending and the shear of a turned end against their
+  // smaller bending moments of inertia.
+  for (const BeamElementSpec& e : m.beam_elements) {
+    const Body& b1 = m.bodies[static_cast<size_t>(e.body1)];
+    const Body& b2 = m.bodies[static_cast<size_t>(e.body2)];
+    const BeamSection& c = e.section;
+    const double l = (b2.position - b1.position).norm();
+    const double shear = std::max(c.GAy, c.GAz);
+    const double translation = std::max(c.EA, shear) / l * (1 / b1.mass + 1 / b2.mass);
+    const double twist = c.GJ / l * (1 / b1.inertia(0, 0) + 1 / b2.inertia(0, 0));
+    const double bending = (std::max(c.EIy, c.EIz) / l + shear * l / 4) *
+                           (1 / std::min(b1.inertia(1, 1), b1.inertia(2, 2)) + 1 / std::min(b2.inertia(1, 1), b2.inertia(2, 2)));
+    // Explicit stiffness-proportional damping lowers the limit to
+    // (2 / w) (sqrt(1 + z^2) - z), z = damping w / 2: as a higher frequency.
+    const double w = std::sqrt(2 * std::max({translation, twist, bending})), z = c.damping * w / 2;
+    stiffest(w / (std::sqrt(1 + z * z) - z), "beam element " + b1.name + " - " + b2.name);
+  }
   s.energy_bound = energy;
   const std::vector<bool> locked = rotation_locked(m);
   const std::vector<bool> free_sphere = free_isotropic(m);
