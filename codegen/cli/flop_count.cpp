@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "shell_quote.hpp"
@@ -57,7 +58,14 @@ Executed profile(const std::string& executable, double h, int steps, const fs::p
   const std::string cmd = "valgrind --tool=callgrind --dump-instr=yes --dump-line=no --compress-pos=no "
                           "--compress-strings=no --callgrind-out-file=" + shell_quote(out.string()) + " " +
                           shell_quote(executable) + " --t-end " + t_end + " --every 1000000000 --serial > /dev/null 2>&1";
-  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("valgrind failed (is it installed?): " + cmd);
+  const int status = std::system(cmd.c_str());
+  if (status != 0) {
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (code == 127) throw std::runtime_error("valgrind not found: the report counts instructions with it (install valgrind)");
+    throw std::runtime_error("the counting run under valgrind failed (exit " + std::to_string(code) + ", " + t_end +
+                             " s of the model; does it diverge at its step? try mbrt sim MODEL --t-end " + t_end +
+                             "): " + cmd);
+  }
   return read_profile(out);
 }
 
