@@ -251,11 +251,8 @@ struct BeamSection {
 
 struct FlexibleBody {
   std::string name;
-  SourceLocation where;
   int first_node = 0;  // Model::bodies index of the root node; the others follow
   int elements = 0;
-  double length = 0.0, rho_A = 0.0, rho_J = 0.0;  // m, kg/m, kg m
-  BeamSection section;
 };
 
 // One element of a nodal beam between two node bodies, through their centres
@@ -264,7 +261,6 @@ struct BeamElementSpec {
   int body1 = kGround, body2 = kGround;
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
   BeamSection section;
-  int flexible = 0;  // Model::flexible index
 };
 
 struct Model {

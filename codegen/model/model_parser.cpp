@@ -13,6 +13,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -486,23 +487,23 @@ std::pair<double, double> read_pair(const Value& v) {
 void parse_flexible_body(const Value& item, const Section& s, std::map<std::string, int>& names_seen, Model& model) {
   s.restrict_to(kFlexibleBodyKeys, "a flexible body (its mass and inertia come from the beam)");
   FlexibleBody f;
-  f.where = item.where;
   const Value name = s.get("name");
   f.name = read_identifier(name);
   check_unique(name, f.name, "body", names_seen);
   const Section b(s.get("flexible"), kBeamKeys);
-  f.length = read_positive(b.get("length"));
+  const double length = read_positive(b.get("length"));
   f.elements = read_integer_at_least(b.get("elements"), 1);
   if (f.elements > 200) fail_expected(b.get("elements"), "at most 200 elements");
-  f.rho_A = read_positive(b.get("rho_A"));
-  f.rho_J = read_positive(b.get("rho_J"));
-  f.section.EA = read_positive(b.get("EA"));
-  f.section.GJ = read_positive(b.get("GJ"));
-  std::tie(f.section.EIy, f.section.EIz) = read_pair(b.get("EI"));
+  const double rho_A = read_positive(b.get("rho_A"));
+  const double rho_J = read_positive(b.get("rho_J"));
+  BeamSection section;
+  section.EA = read_positive(b.get("EA"));
+  section.GJ = read_positive(b.get("GJ"));
+  std::tie(section.EIy, section.EIz) = read_pair(b.get("EI"));
   // Shear stiffness: a solid section's kappa G A is about a third of E A.
-  f.section.GAy = f.section.GAz = f.section.EA / 3;
-  if (auto v = b.find("GA")) std::tie(f.section.GAy, f.section.GAz) = read_pair(*v);
-  if (auto v = b.find("damping")) f.section.damping = read_non_negative(*v);
+  section.GAy = section.GAz = section.EA / 3;
+  if (auto v = b.find("GA")) std::tie(section.GAy, section.GAz) = read_pair(*v);
+  if (auto v = b.find("damping")) section.damping = read_non_negative(*v);
   Eigen::Vector4d orientation{1.0, 0.0, 0.0, 0.0};
   Eigen::Vector3d root = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
   if (auto v = s.find("orientation")) orientation = read_euler_parameters(*v);
@@ -510,7 +511,7 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
   if (auto v = s.find("velocity")) velocity = read_vector3(*v);
   if (auto v = s.find("angular_velocity")) w = read_vector3(*v);
   const Eigen::Matrix3d R = mbrt::rotation_matrix(orientation);
-  const double l = f.length / f.elements;
+  const double l = length / f.elements;
   f.first_node = static_cast<int>(model.bodies.size());
   for (int k = 0; k <= f.elements; ++k) {
     Body node;
@@ -518,9 +519,9 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
     node.where = item.where;
     check_unique(name, node.name, "body", names_seen);
     const double slice = (k == 0 || k == f.elements) ? l / 2 : l;
-    node.mass = f.rho_A * slice;
-    const double bending = f.rho_J / 2 * slice + node.mass * slice * slice / 12;
-    node.inertia = Eigen::Vector3d(f.rho_J * slice, bending, bending).asDiagonal();
+    node.mass = rho_A * slice;
+    const double bending = rho_J / 2 * slice + node.mass * slice * slice / 12;
+    node.inertia = Eigen::Vector3d(rho_J * slice, bending, bending).asDiagonal();
     node.orientation = orientation;
     const Eigen::Vector3d arm = R * Eigen::Vector3d(k * l, 0, 0);
     node.position = root + arm;
@@ -528,10 +529,7 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
     node.angular_velocity = w;
     model.bodies.push_back(node);
   }
-  for (int k = 0; k < f.elements; ++k) {
-    model.beam_elements.push_back({f.first_node + k, f.first_node + k + 1, R.col(1), f.section,
-                                   static_cast<int>(model.flexible.size())});
-  }
+  for (int k = 0; k < f.elements; ++k) model.beam_elements.push_back({f.first_node + k, f.first_node + k + 1, R.col(1), section});
   model.flexible.push_back(f);
 }
 
