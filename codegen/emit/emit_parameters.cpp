@@ -23,7 +23,7 @@ void piecewise_function(std::ostringstream& o, const ConstraintBlock& b) {
     for (size_t k = 0; k < p.polynomial.size(); ++k) o << (k ? ", " : "") << num(p.polynomial[k]);
     o << "};\nconstexpr std::array<mbrt::Harmonic, " << p.harmonics.size() << "> " << n << "_harmonics{{";
     for (size_t k = 0; k < p.harmonics.size(); ++k) {
-      const HarmonicTerm& h = p.harmonics[k];
+      const mbrt::Harmonic& h = p.harmonics[k];
       o << (k ? ", " : "") << "{" << num(h.amplitude) << ", " << num(h.omega) << ", " << num(h.phase) << "}";
     }
     o << "}};  // amplitude sin(omega t + phase)\n";

@@ -42,14 +42,8 @@ double joint_rate_at_start(const Model& model, const Joint& joint) {
 }
 
 mbrt::TimeValue evaluate(const FunctionPiece& piece, double t) {
-  mbrt::TimeValue v = mbrt::polynomial(piece.polynomial.data(), piece.polynomial.size(), t);
-  for (const HarmonicTerm& h : piece.harmonics) {
-    const mbrt::TimeValue s = mbrt::sine({h.amplitude, h.omega, h.phase, 0.0}, t);
-    v.f += s.f;
-    v.df += s.df;
-    v.ddf += s.ddf;
-  }
-  return v;
+  return mbrt::polynomial_and_harmonics(piece.polynomial.data(), piece.polynomial.size(), piece.harmonics.data(),
+                                        piece.harmonics.size(), t);
 }
 
 mbrt::TimeValue evaluate(const TimeFunction& f, double t) {

@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 
 #include <mbrt/scheme.hpp>
-#include <mbrt/time_functions.hpp>
+#include <mbrt/piecewise_function.hpp>
 
 #include "driver_types.hpp"
 #include "force_types.hpp"
@@ -95,17 +95,12 @@ struct Joint {
   // rolling_ball: the sphere's centre (world, t = 0) is `point`, default the COM.
 };
 
-// One term amplitude sin(omega t + phase) of a function piece.
-struct HarmonicTerm {
-  double amplitude = 0.0, omega = 0.0, phase = 0.0;
-};
-
 // One piece of a piecewise f(t): sum c[k] t^k plus harmonic terms, for
 // t < until (the last piece: to the end of time).
 struct FunctionPiece {
   double until = std::numeric_limits<double>::infinity();
   std::vector<double> polynomial;
-  std::vector<HarmonicTerm> harmonics;
+  std::vector<mbrt::Harmonic> harmonics;  // amplitude sin(omega t + phase)
 };
 
 // f(t) of a driver: a polynomial sum c[k] t^k, offset + amplitude sin(omega

@@ -866,7 +866,7 @@ FunctionPiece parse_piece(const Value& v, bool last) {
     }
     for (std::size_t i = 0; i < harmonics->node.size(); ++i) {
       const Section h(element(*harmonics, i), kHarmonicKeys);
-      HarmonicTerm term;
+      mbrt::Harmonic term{0.0, 0.0, 0.0};
       term.amplitude = read_number(h.get("amplitude"));
       term.omega = read_number(h.get("omega"));
       if (auto x = h.find("phase")) term.phase = read_number(*x);

@@ -15,18 +15,23 @@ struct Harmonic {
   double amplitude, omega, phase;
 };
 
-// c0 + c1 t + ... + c(N-1) t^(N-1) + the harmonic terms.
-template <size_t N, size_t H>
-inline TimeValue polynomial_and_harmonics(const std::array<double, N>& c, const std::array<Harmonic, H>& terms,
+// c0 + c1 t + ... + c(n-1) t^(n-1) + the m harmonic terms.
+inline TimeValue polynomial_and_harmonics(const double* c, size_t n, const Harmonic* terms, size_t m,
                                           double t) noexcept {
-  TimeValue v = polynomial(c.data(), N, t);
-  for (const Harmonic& h : terms) {
-    const TimeValue s = sine({h.amplitude, h.omega, h.phase, 0.0}, t);
+  TimeValue v = polynomial(c, n, t);
+  for (size_t k = 0; k < m; ++k) {
+    const TimeValue s = sine({terms[k].amplitude, terms[k].omega, terms[k].phase, 0.0}, t);
     v.f += s.f;
     v.df += s.df;
     v.ddf += s.ddf;
   }
   return v;
+}
+
+template <size_t N, size_t H>
+inline TimeValue polynomial_and_harmonics(const std::array<double, N>& c, const std::array<Harmonic, H>& terms,
+                                          double t) noexcept {
+  return polynomial_and_harmonics(c.data(), N, terms.data(), H, t);
 }
 
 }  // namespace mbrt
