@@ -18,6 +18,7 @@
 #include "flexible_cantilever.hpp"
 #include "flexible_free.hpp"
 #include "flexible_spin_up.hpp"
+#include "spin_up_reference.hpp"
 
 namespace {
 
@@ -25,13 +26,6 @@ using mbrt::Mat3;
 using mbrt::Vec3;
 
 Mat3 rotation(const Vec3& axis, double angle) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
-
-// The spin-up's hub angle and its derivatives (Simo & Vu-Quoc 1986).
-std::array<double, 3> hub_angle(double t) {
-  const double a = 15.0 / (2 * M_PI), w = 2 * M_PI / 15.0;
-  if (t >= 15.0) return {6 * t - 45, 6, 0};
-  return {0.4 * (t * t / 2 + a * a * (std::cos(w * t) - 1)), 0.4 * (t - a * std::sin(w * t)), 0.4 * (1 - std::cos(w * t))};
-}
 
 }  // namespace
 
@@ -173,74 +167,12 @@ TEST_CASE("a free flexible beam keeps its energy, momentum and angular momentum 
   CHECK(worst_h < 1e-11 * h0.norm());
 }
 
-// The reference: the beam's in-plane cantilever modes (40 cubic elements) in
-// the hub's rotating frame, with the centrifugal softening of the transverse
-// motion and the geometric stiffness of the axial load (Kane, Ryan &
-// Banerjee 1987), driven by the hub's angular acceleration:
-//   q'' + (Omega^2 + theta'^2 (KG - M_transverse)) q = -theta'' beta_z,
-// stepped by the classical Runge-Kutta method at 1 ms.
-struct SpinUpReference {
-  std::vector<double> tip;  // transverse tip deflection every 10 ms
-  bool diverged = false;
-};
-
-SpinUpReference spin_up_reference(bool geometric_stiffness) {
-  mbrt::codegen::BeamProperties b;
-  b.length = 10.0;
-  b.EIz = 1.4e4;  // in-plane bending
-  b.EIy = 1.4e7;  // out of plane: held far above
-  b.EA = 2.8e9;
-  b.GJ = 1.4e7;
-  b.rho_A = 1.2;
-  b.rho_J = 1e-3;
-  b.elements = 40;
-  const int kept = 5;
-  const auto modes = mbrt::codegen::beam_modes(b, mbrt::codegen::BeamSupport::clamped_root, kept);
-  const auto full = mbrt::codegen::assemble_beam(b);
-  // The in-plane transverse motion: y displacements and z rotations.
-  Eigen::MatrixXd transverse = full.M;
-  for (int i = 0; i < transverse.rows(); ++i) {
-    for (int j = 0; j < transverse.cols(); ++j) {
-      const bool in_plane = (i % 6 == 1 || i % 6 == 5) && (j % 6 == 1 || j % 6 == 5);
-      if (!in_plane) transverse(i, j) = 0;
-    }
-  }
-  const Eigen::MatrixXd softening = modes.shapes.transpose() * transverse * modes.shapes;
-  const Eigen::MatrixXd stiffening = geometric_stiffness ? modes.KG : Eigen::MatrixXd::Zero(kept, kept);
-  const Eigen::VectorXd drive = modes.beta.row(2).transpose();
-  const Eigen::RowVectorXd tip_row = modes.shapes.row(6 * b.elements + 1);
-  using V = Eigen::VectorXd;
-  const auto rate = [&](double t, const V& y) {
-    const auto th = hub_angle(t);
-    V out(2 * kept);
-    out.head(kept) = y.tail(kept);
-    out.tail(kept) = -(modes.omega.cwiseAbs2().asDiagonal() * y.head(kept)) -
-                     th[1] * th[1] * ((stiffening - softening) * y.head(kept)) - th[2] * drive;
-    return out;
-  };
-  SpinUpReference r;
-  V y = V::Zero(2 * kept);
-  const double h = 1e-3;
-  for (int i = 0; i < 20000; ++i) {
-    const double t = i * h;
-    const V k1 = rate(t, y), k2 = rate(t + h / 2, y + h / 2 * k1), k3 = rate(t + h / 2, y + h / 2 * k2),
-            k4 = rate(t + h, y + h * k3);
-    y += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-    if ((i + 1) % 10 == 0) r.tip.push_back(tip_row * y.head(kept));
-    if (!(std::abs(r.tip.empty() ? 0.0 : r.tip.back()) < 10.0)) {
-      r.diverged = true;
-      break;
-    }
-  }
-  return r;
-}
-
 TEST_CASE("the spin-up beam follows an independent modal model with geometric stiffness, and stretches as it spins") {
-  const SpinUpReference reference = spin_up_reference(true);
+  const spin_up::SpinUpReference reference = spin_up::spin_up_reference(true);
   REQUIRE(!reference.diverged);
   // Without its geometric stiffness the linear model softens and diverges
   // (Kane, Ryan & Banerjee 1987): the stiffening is what the test checks.
-  CHECK(spin_up_reference(false).diverged);
+  CHECK(spin_up::spin_up_reference(false).diverged);
   namespace m = mbrt::models::flexible_spin_up;
   m::State s = m::initial_state();
   const int tip = m::kBodyInfo[m::body::beam_n10].slot;
@@ -249,7 +181,7 @@ TEST_CASE("the spin-up beam follows an independent modal model with geometric st
   for (int i = 1; i <= 250000; ++i) {  // 20 s at 80 us
     REQUIRE(m::step(s) == mbrt::StepStatus::ok);
     if (i % 125 != 0) continue;
-    const double theta = hub_angle(s.t)[0];
+    const double theta = spin_up::hub_angle(s.t)[0];
     const Vec3 r = s.rigid[static_cast<size_t>(tip)].r;
     const double transverse = -std::sin(theta) * r.x() + std::cos(theta) * r.y();
     const double reference_tip = reference.tip[static_cast<size_t>(i / 125 - 1)];

@@ -55,6 +55,7 @@ std::vector<GeneratedFile> Emitter::c_interface() const {
   if (!friction_joints().empty()) {
     h << "#define " << N << "_FRICTION_JOINTS " << friction_joints().size() << " /* joints with friction, docs/friction.md */\n";
   }
+  if (modal()) h << "#define " << N << "_MODAL_BODIES " << a_.modal.size() << " /* docs/flexible.md */\n";
   if (has_contacts()) h << "#define " << N << "_CONTACTS " << a_.contacts.size() << " /* docs/contact.md */\n";
   if (has_inputs()) h << "#define " << N << "_INPUTS " << m_.inputs.size() << "\n";
   if (has_outputs()) h << "#define " << N << "_OUTPUTS " << output_value_count() << " /* values */\n";

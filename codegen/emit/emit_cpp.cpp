@@ -33,6 +33,9 @@ std::string Emitter::header() const {
     << "inline constexpr int kBodies = " << m_.bodies.size() << ";\n"
     << "inline constexpr int kRigidBodies = " << a_.rigid_count << ";\n"
     << "inline constexpr int kParticles = " << a_.particle_count << ";\n"
+    << (modal() ? "inline constexpr int kModalBodies = " + std::to_string(a_.modal.size()) +
+                      ";  // flexible bodies with modal coordinates (docs/flexible.md)\n"
+                : "")
     << "inline constexpr int kConstraintBlocks = " << blocks() << ";  // joints, then drivers\n"
     << "inline constexpr int kConstraintRows = " << a_.constraint_rows << ";\n"
     << "inline constexpr int kParts = " << parts() << ";  // subsystems stepped in parallel (docs/parallel.md)\n\n"
@@ -131,6 +134,15 @@ std::vector<StateField> Emitter::state_fields() const {
                "rigid_acceleration", "mbrt_rigid_acceleration", "RIGID_BODIES", "", nr});
   f.push_back({"  std::array<mbrt::Vec3, kParticles> particle_acceleration;\n", "particle_acceleration", "double",
                "PARTICLES", "[3]", np});
+  if (modal()) {
+    const int nm = static_cast<int>(a_.modal.size());
+    f.push_back({"  // Modal bodies by modal:: index (docs/flexible.md), their first N entries:\n"
+                 "  // modal coordinates q, momenta p = qdot + St^T R^T v + Sr^T w, and dp/dt at t.\n"
+                 "  std::array<mbrt::Vec6, kModalBodies> modal_q, modal_p, modal_rate;\n",
+                 "modal_q", "double", "MODAL_BODIES", "[6]", nm});
+    f.push_back({"", "modal_p", "double", "MODAL_BODIES", "[6]", nm});
+    f.push_back({"", "modal_rate", "double", "MODAL_BODIES", "[6]", nm});
+  }
   f.push_back({std::string(tree_scheme() ? "" : "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n") +
                    "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n",
                "lambda", "double", "CONSTRAINT_ROWS", "", rows});
@@ -182,7 +194,13 @@ void Emitter::index_names(std::ostringstream& o) const {
       o << "inline constexpr int " << m_.bodies[i].name << " = " << a_.bodies[i].slot << ";\n";
     }
   }
-  o << "}  // namespace particle\nnamespace constraint {\n";
+  o << "}  // namespace particle\n";
+  if (modal()) {
+    o << "namespace modal {  // into State::modal_q, modal_p, modal_rate\n";
+    for (size_t k = 0; k < a_.modal.size(); ++k) o << "inline constexpr int " << body(a_.modal[k].body).name << " = " << k << ";\n";
+    o << "}  // namespace modal\n";
+  }
+  o << "namespace constraint {\n";
   for (int j = 0; j < blocks(); ++j) o << "inline constexpr int " << jname(j) << " = " << j << ";\n";
   o << "}  // namespace constraint\n\n";
 }
@@ -223,6 +241,7 @@ void Emitter::constants(std::ostringstream& o) const {
     }
   }
   frame_constants(o);
+  modal_constants(o);
   o << "\n";
 }
 
@@ -400,8 +419,8 @@ void Emitter::model_members(std::ostringstream& o) const {
 
 void Emitter::workspace_types(std::ostringstream& o) const {
   o << "using Rows = Eigen::Matrix<double, " << (planar_ ? "kPlanarRows" : "kConstraintRows") << ", 1>;\n"
-    << "using BodyVectors = std::array<mbrt::" << (planar_ ? "Vec3, kBodies>;  // [v_i; v_j; omega_k], plane coordinates" : "Vec6, kBodies>;  // [v; w_body]")
-    << " per body\n\n"
+    << "using BodyVectors = std::array<mbrt::" << (planar_ ? "Vec3, kBodies>;  // [v_i; v_j; omega_k], plane coordinates" : modal() ? "Vec6, kBodies + kModalBodies>;  // [v; w_body]" : "Vec6, kBodies>;  // [v; w_body]")
+    << " per body" << (modal() ? ", then the modal bodies' momenta" : "") << "\n\n"
     << "struct Kinematics {\n"
     << "  std::array<mbrt::" << type("BodyPose") << ", kBodies> pose;\n"
     << "  std::array<mbrt::" << type("BodyVelocity") << ", kBodies> vel;\n"
@@ -409,6 +428,7 @@ void Emitter::workspace_types(std::ostringstream& o) const {
     << "struct Loads {\n"
     << "  std::array<mbrt::" << type("Wrench") << ", kBodies> w;\n"
     << "  double elastic_energy;\n"
+    << (modal() ? "  std::array<mbrt::Vec6, kModalBodies> modal;  // the modal momenta's rates\n" : "")
     << "};\n\n"
     << (scheme_kind() == Scheme::staggered_nps ? "// Constraint rows.\n"
                                      : "// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of\n"
@@ -453,6 +473,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
     if (a_.bodies[i].rigid) o << "  u" << at(static_cast<int>(i)) << " << " << st << ".v, " << st << ".w;\n";
     else o << "  u" << at(static_cast<int>(i)) << " << " << st << ".v, mbrt::Vec3::Zero();\n";
   }
+  if (modal()) o << "  for (int b = 0; b < kModalBodies; ++b) u[kBodies + b] = s.modal_p[b];\n";
   o << "  return u;\n}\n\n";
   if (emits_step()) {
     o << "// (u) => (s): write generalized velocities back.\n"
@@ -462,6 +483,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
       o << "  " << st << ".v = u" << at(static_cast<int>(i)) << ".head<3>();\n";
       if (a_.bodies[i].rigid) o << "  " << st << ".w = u" << at(static_cast<int>(i)) << ".tail<3>();\n";
     }
+    if (modal()) o << "  for (int b = 0; b < kModalBodies; ++b) s.modal_p[b] = u[kBodies + b];\n";
     o << "}\n\n";
   }
   o << "// (a) => (s): accelerations kept for the next step.\n"
@@ -473,6 +495,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
       o << "  " << acceleration_of(i) << " = a" << at(i) << ".head<3>();\n";
     }
   }
+  if (modal()) o << "  for (int b = 0; b < kModalBodies; ++b) s.modal_rate[b] = a[kBodies + b];\n";
   o << "}\n\n"
     << "static BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
   for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
@@ -482,6 +505,7 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
       o << "  a" << at(i) << " << " << acceleration_of(i) << ", mbrt::Vec3::Zero();\n";
     }
   }
+  if (modal()) o << "  for (int b = 0; b < kModalBodies; ++b) a[kBodies + b] = s.modal_rate[b];\n";
   o << "  return a;\n}\n\n";
 }
 
@@ -550,6 +574,7 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
       << "    l.elastic_energy += e.energy;\n  }\n";
   }
   for (size_t i = 0; i < m_.inputs.size(); ++i) input_load(o, m_.inputs[i], a_.inputs[i]);
+  if (!tree) modal_loads(o);  // last: it reduces the frame's whole load
   o << "}\n\n";
 }
 
@@ -654,12 +679,12 @@ void Emitter::factorization(std::ostringstream& o) const {
   const bool shifted = scheme_kind() == Scheme::ali3p;
   OpCount directions;
   std::ostringstream body;
-  if (blocks() == 0) body << "  (void)c;\n";
+  if (blocks() == 0) body << (mass_parameter().empty() ? "" : "  (void)s;\n") << "  (void)c;\n";
   std::vector<std::string> part_lines(static_cast<size_t>(parts()));
   for (int ji = 0; ji < blocks(); ++ji) {
     for (int b : moving_bodies(ji)) {
       part_lines[static_cast<size_t>(parallel() ? phase_part(ji) : 0)] +=
-          "  " + mbt(ji, b) + " = mbrt::inverse_mass_times_transpose(" + mass_of(b) + ", " + rows_of(ji) + "." + side(ji, b) + ");\n";
+          "  " + mbt(ji, b) + " = mbrt::inverse_mass_times_transpose(" + inverse_mass_of(b) + ", " + rows_of(ji) + "." + side(ji, b) + ");\n";
       directions += inverse_mass_ops(b, rows(ji));
     }
   }
@@ -888,8 +913,9 @@ void Emitter::mass_products(std::ostringstream& o) const {
       out += "  a" + at(i) + ".setZero();  // " + body(i).name + ": no applied load\n";
       continue;
     }
-    out += "  a" + at(i) + " = mbrt::inverse_mass_times(" + mass_of(i) + ", l.w" + at(i) + ");\n";
+    out += "  a" + at(i) + " = mbrt::inverse_mass_times(" + inverse_mass_of(i) + ", l.w" + at(i) + ");\n";
   }
+  if (modal()) part_lines[0] += "  for (int b = 0; b < kModalBodies; ++b) a[kBodies + b] = l.modal[b];  // unit modal masses\n";
   o << (parallel() ? parallel_region(part_lines) : part_lines[0]) << "  return a;\n}\n\n";
 }
 
@@ -914,6 +940,7 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
       o << "  " << st << " = {" << r << ", " << v << "};\n";
     }
   }
+  modal_initial_momenta(o);
   if (has_inputs()) {
     o << "  s.inputs = {";
     for (size_t i = 0; i < m_.inputs.size(); ++i) o << (i ? ", " : "") << num(m_.inputs[i].safe);
@@ -956,6 +983,9 @@ void Emitter::initial_state_function(std::ostringstream& o) const {
   }
   o << "  Loads l;\n  applied_loads(k, s, l);\n  constraint_forces(" << (nps ? "c, t" : "c")
     << ", l, stacked_phi(c), s);\n";
+  if (modal()) {  // the modal loads take the accelerations: once more with the first ones
+    o << "  applied_loads(k, s, l);\n  constraint_forces(c, l, stacked_phi(c), s);\n";
+  }
   if (ali3p) o << "  s.ali3p_lambda_star = s.lambda;\n";
   if (ali3p_weighted()) {
     o << "  const BodyVectors a = accelerations_of(s);\n"
@@ -974,15 +1004,18 @@ void Emitter::diagnostics(std::ostringstream& o) const {
   kinematics(s, k);
   Loads l;
   applied_loads(k, s, l);
-  const BodyVectors u = generalized_velocities(s);
+)" << (modal() ? "  [[maybe_unused]] " : "  ") << R"(const BodyVectors u = generalized_velocities(s);
   mbrt::Energy e{0.0, l.elastic_energy};
 )";
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
-    o << "  e.kinetic += mbrt::kinetic_energy(" << mass_of(static_cast<int>(i)) << ", u" << at(static_cast<int>(i)) << ");\n";
+    if (plan(static_cast<int>(i)).modal < 0) {
+      o << "  e.kinetic += mbrt::kinetic_energy(" << mass_of(static_cast<int>(i)) << ", u" << at(static_cast<int>(i)) << ");\n";
+    }
     if (a_.gravity) {
       o << "  e.potential -= " << mass_of(static_cast<int>(i)) << ".m * " << gravity() << ".dot(" << pose(static_cast<int>(i)) << ".r);\n";
     }
   }
+  modal_energy(o);
   for (const TreeFrame& f : a_.tree_frames.frames) {
     if (f.armature == 0.0) continue;
     o << "  e.kinetic += " << num(0.5 * f.armature) << " * s.qd" << at(f.body) << " * s.qd" << at(f.body) << ";  // armature of "
@@ -1056,6 +1089,7 @@ std::string Emitter::source() const {
   o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n"
     << (a_.beams.empty() ? "" : "#include <mbrt/beam_element.hpp>\n")
     << (piecewise_drivers() ? "#include <mbrt/piecewise_function.hpp>\n" : "")
+    << (modal() ? "#include <mbrt/modal_body.hpp>\n" : "")
     << "#include <mbrt/reactions.hpp>\n#include <mbrt/schemes/"
     << step_header() << ">\n" << (parallel() ? "#include <mbrt/worker_team.hpp>\n" : "") << "\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";

@@ -137,6 +137,10 @@ void Emitter::outputs_function(std::ostringstream& o) const {
         << (out.type == OutputType::joint_position ? "position" : "velocity") << ";\n";
       continue;
     }
+    if (out.modal_tip) {
+      o << modal_tip_output(out, at);
+      continue;
+    }
     const std::string st = state_of(out.body);
     const bool rigid = plan(out.body).rigid;
     if (out.type == OutputType::body_pose) {

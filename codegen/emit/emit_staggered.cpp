@@ -36,7 +36,9 @@ static void kick(State& s) noexcept {
     s.rigid[b].w += (0.5 * h) * s.rigid_acceleration[b].alpha;
   }
   for (int b = 0; b < kParticles; ++b) s.particle[b].v += (0.5 * h) * s.particle_acceleration[b];
-}
+)";
+  modal_kick(o);
+  o << R"(}
 
 // (s) => (s): positions to t + h with the half-step velocities (eq. 2), and
 // the Euler parameters (eq. 3): under staggered-pcst each body's torque-free
@@ -45,12 +47,15 @@ static void drift(State& s) noexcept {
   for (int b = 0; b < kRigidBodies; ++b) s.rigid[b].r += h * s.rigid[b].v;
   for (int b = 0; b < kParticles; ++b) s.particle[b].r += h * s.particle[b].v;
 )";
+  for (const ModalPlan& p : a_.modal) {
+    o << "  const mbrt::Mat3 " << body(p.body).name << "_start = mbrt::rotation_matrix(" << state_of(p.body) << ".p);\n";
+  }
   std::vector<std::string> part_lines(static_cast<size_t>(parts()));
   for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {
     if (!plan(i).rigid) continue;
     const std::string st = state_of(i);
     std::string& out = part_lines[static_cast<size_t>(parallel() ? body_part(i) : 0)];
-    if (!free_rotation() || spherical_inertia(i)) {  // w constant over the step
+    if (!free_rotation() || spherical_inertia(i) || plan(i).modal >= 0) {  // w constant over the step
       out += "  " + st + ".p = mbrt::advance_euler_parameters(" + st + ".p, " + st + ".w, h, kEulerUpdates);  // " +
              body(i).name + "\n";
     } else {
@@ -58,7 +63,9 @@ static void drift(State& s) noexcept {
              body(i).name + "\n";
     }
   }
-  o << (parallel() ? parallel_region(part_lines) : part_lines[0]) << "  s.t += h;\n}\n\n";
+  o << (parallel() ? parallel_region(part_lines) : part_lines[0]);
+  modal_drift(o);
+  o << "  s.t += h;\n}\n\n";
 }
 
 // The kernels only the staggered schemes' step calls; the step itself is

@@ -142,7 +142,8 @@ class Emitter {
   }
   // Bodies whose gyroscopic torque the step evaluates (not the isotropic ones
   // when specialized; a planar scene turns about a principal axis and has none).
-  bool gyroscopic(int i) const { return plan(i).rigid && !plan(i).isotropic && !planar_; }
+  // A modal body's frame takes its inertia terms from the modal kernel.
+  bool gyroscopic(int i) const { return plan(i).rigid && !plan(i).isotropic && !planar_ && plan(i).modal < 0; }
   // Where the gyroscopic torque is a load (StepPlan::free_rotation).
   bool gyroscopic_loads() const { return !free_rotation(); }
   bool free_rotation() const { return a_.step.free_rotation; }
@@ -167,8 +168,27 @@ class Emitter {
   }
   // The kernels that form M^-1 take the state where masses are runtime
   // parameters (include/mbrt/schemes/staggered.hpp): parameter and argument.
-  std::string mass_parameter() const { return a_.tunable_masses ? "const State& s, " : ""; }
-  std::string mass_argument() const { return a_.tunable_masses ? "s, " : ""; }
+  // (and where a modal body's frame is turned by its orientation).
+  std::string mass_parameter() const { return a_.tunable_masses || modal() ? "const State& s, " : ""; }
+  std::string mass_argument() const { return a_.tunable_masses || modal() ? "s, " : ""; }
+  // Body i's M^-1 in the inverse-mass products: its mass, or a modal body's
+  // reduced mass turned to its orientation (include/mbrt/modal_body.hpp).
+  std::string inverse_mass_of(int i) const {
+    if (plan(i).modal < 0) return mass_of(i);
+    return "mbrt::modal_inverse_mass(" + body(i).name + "_modal, " + state_of(i) + ".p)";
+  }
+
+  // emit_modal.cpp: modal bodies (docs/flexible.md).
+  bool modal() const { return !a_.modal.empty(); }
+  std::string modal_slot(int k) const { return "[modal::" + body(a_.modal[static_cast<size_t>(k)].body).name + "]"; }
+  std::string modal_coordinates(int k, const std::string& field) const;  // s.modal_q[modal::NAME].head<N>()
+  void modal_constants(std::ostringstream& o) const;
+  void modal_loads(std::ostringstream& o) const;
+  void modal_kick(std::ostringstream& o) const;
+  void modal_drift(std::ostringstream& o) const;
+  void modal_initial_momenta(std::ostringstream& o) const;
+  void modal_energy(std::ostringstream& o) const;
+  std::string modal_tip_output(const Output& out, const std::string& at) const;
 
   // emit_parameters.cpp: runtime parameters (docs/parameters.md).
   const Parameter* tunable(ParameterTarget target, int index, int component = 0) const;

@@ -181,6 +181,7 @@ struct Output {
   int joint = -1;     // joint_position, joint_velocity
   int body = kGround; // body_pose, body_velocity
   int contact = -1;   // contact_force, contact_stuck: Model::contacts index
+  bool modal_tip = false;  // body_pose, body_velocity of a modal body's tip (NAME@tip)
 };
 
 // ali3p (docs/ali3p.md): index-3 augmented Lagrangian with projections.
@@ -258,6 +259,17 @@ struct BeamElementSpec {
   BeamSection section;
 };
 
+// A flexible body as a modal body (docs/flexible.md): the body `body` is the
+// beam's frame (its undeformed centre and axes), with the beam's lowest
+// `modes` bending and axial modes clamped at its root (body point
+// (-length / 2, 0, 0)), from `elements` finite elements.
+struct ModalBeam {
+  int body = kGround;
+  double length = 0.0, EA = 0.0, GJ = 0.0, EIy = 0.0, EIz = 0.0, rho_A = 0.0, rho_J = 0.0;
+  double damping = 0.0;  // s: stiffness-proportional
+  int elements = 0, modes = 0;
+};
+
 struct Model {
   std::string name;
   std::string file;  // path as given, for messages
@@ -268,6 +280,7 @@ struct Model {
   std::vector<Force> forces;
   std::vector<FlexibleBody> flexible;
   std::vector<BeamElementSpec> beam_elements;  // of the flexible bodies, in their order
+  std::vector<ModalBeam> modal;                // the modal bodies
   std::vector<Driver> drivers;
   std::vector<Input> inputs;
   std::vector<Output> outputs;

@@ -32,7 +32,7 @@ const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers
 const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
                         "orientation", "velocity", "angular_velocity", "flexible"};
 const Keys kFlexibleBodyKeys = {"name", "flexible", "position", "orientation", "velocity", "angular_velocity"};
-const Keys kBeamKeys = {"length", "elements", "EA", "GA", "GJ", "EI", "rho_A", "rho_J", "damping"};
+const Keys kBeamKeys = {"length", "elements", "EA", "GA", "GJ", "EI", "rho_A", "rho_J", "damping", "modes"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
 const Keys kFunctionKeys = {"polynomial", "sine", "pieces"};
 const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
@@ -423,7 +423,15 @@ int read_body_ref(const Value& v, const Model& model) {
   for (const auto& b : model.bodies) names.push_back(b.name);
   const std::string s = read_string(v, "a body name (" + join(names) + ")");
   if (s == "ground") return kGround;
-  if (const auto at = s.find('@'); at != std::string::npos) return read_node_ref(v, model, s.substr(0, at), s.substr(at + 1));
+  if (const auto at = s.find('@'); at != std::string::npos) {
+    for (const ModalBeam& beam : model.modal) {
+      const std::string& name = model.bodies[static_cast<size_t>(beam.body)].name;
+      if (s.substr(0, at) == name) {
+        fail(v, "'" + name + "' is a modal body: joints and forces name it and attach at its root; outputs also take " + name + "@tip");
+      }
+    }
+    return read_node_ref(v, model, s.substr(0, at), s.substr(at + 1));
+  }
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (model.bodies[i].name == s) return static_cast<int>(i);
   }
@@ -511,6 +519,26 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
   if (auto v = s.find("velocity")) velocity = read_vector3(*v);
   if (auto v = s.find("angular_velocity")) w = read_vector3(*v);
   const Eigen::Matrix3d R = mbrt::rotation_matrix(orientation);
+  if (auto modes = b.find("modes")) {
+    // A modal body: one body, the beam's frame at its centre.
+    if (auto v = b.find("GA")) fail(*v, "GA is a nodal beam's (a modal body's modes are Euler-Bernoulli); remove it or drop modes");
+    ModalBeam beam{static_cast<int>(model.bodies.size()), length, section.EA, section.GJ, section.EIy, section.EIz,
+                   rho_A, rho_J, section.damping, f.elements, read_integer_at_least(*modes, 1)};
+    if (beam.modes > 6) fail_expected(*modes, "at most 6 modes");
+    Body frame;
+    frame.name = f.name;
+    frame.where = item.where;
+    frame.mass = rho_A * length;
+    frame.inertia = Eigen::Vector3d(rho_J * length, frame.mass * length * length / 12, frame.mass * length * length / 12).asDiagonal();
+    frame.orientation = orientation;
+    const Eigen::Vector3d arm = R * Eigen::Vector3d(length / 2, 0, 0);
+    frame.position = root + arm;
+    frame.velocity = velocity + (R * w).cross(arm);
+    frame.angular_velocity = w;
+    model.bodies.push_back(frame);
+    model.modal.push_back(beam);
+    return;
+  }
   const double l = length / f.elements;
   f.first_node = static_cast<int>(model.bodies.size());
   for (int k = 0; k <= f.elements; ++k) {
@@ -1072,7 +1100,13 @@ Output parse_output(const Value& item, const Model& model, std::map<std::string,
     out.joint = read_joint_ref(s.get("joint"), model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");
   } else {
     const Value body = s.get("body");
-    out.body = read_body_ref(body, model);
+    // A modal body's tip: NAME@tip.
+    const std::string text = body.node.IsScalar() ? body.node.as<std::string>() : std::string();
+    for (const ModalBeam& beam : model.modal) {
+      const std::string& name = model.bodies[static_cast<size_t>(beam.body)].name;
+      if (text == name + "@tip") out.body = beam.body, out.modal_tip = true;
+    }
+    if (!out.modal_tip) out.body = read_body_ref(body, model);
     if (out.body == kGround) fail(body, "ground does not move; name a body");
   }
   return out;

@@ -400,6 +400,7 @@ StepPlan plan_step(const Model& model, const Analysis& a, const std::vector<Para
 }  // namespace
 
 mbrt::Scheme default_scheme(const Model& model) {
+  if (!model.modal.empty()) return mbrt::Scheme::staggered_pcst;  // the schemes that take modal bodies
   // A tunable body state is the absolute schemes' initial state.
   for (const Parameter& p : parameters(model)) {
     if (body_state(p)) return mbrt::Scheme::staggered_pcst;
@@ -512,6 +513,67 @@ static void check_absolute_friction(const Model& model) {
       }
     }
   }
+}
+
+// Modal bodies (docs/flexible.md): their modes are clamped at the root, so
+// joints and forces attach there; the staggered schemes that step the frame
+// with its reduced mass and the modes' momentum take them.
+static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
+  std::vector<ModalPlan> plans;
+  for (size_t i = 0; i < model.modal.size(); ++i) {
+    const ModalBeam& beam = model.modal[i];
+    const Body& body = model.bodies[static_cast<size_t>(beam.body)];
+    const std::string key = "bodies." + body.name + ".flexible.modes";
+    const mbrt::Scheme scheme = model.solver.scheme;
+    if (scheme != mbrt::Scheme::staggered_pcst && scheme != mbrt::Scheme::baumgarte && scheme != mbrt::Scheme::blajer) {
+      throw ModelError(body.where, key,
+                       "a modal body needs staggered-pcst, baumgarte or blajer (the scheme is " +
+                           std::string(mbrt::scheme_name(scheme)) + "); or drop modes for a nodal beam");
+    }
+    if (model.solver.parallel_parts > 1) throw ModelError(body.where, key, "a modal body needs the serial step; remove solver.parallel_parts");
+    if (!model.contacts.empty() || std::any_of(model.joints.begin(), model.joints.end(), [](const Joint& j) { return j.friction.any(); })) {
+      throw ModelError(body.where, key, "modal bodies do not take contacts or joint friction in the model yet");
+    }
+    BodyPlan& frame = a.bodies[static_cast<size_t>(beam.body)];
+    if (frame.tunable_mass) throw ModelError(body.where, key, "a modal body's mass comes from its beam; it cannot be tunable");
+    ModalPlan plan;
+    try {
+      plan = plan_modal_body({beam.length, beam.EA, beam.GJ, beam.EIy, beam.EIz, beam.rho_A, beam.rho_J, beam.elements},
+                             beam.modes, beam.damping);
+    } catch (const std::invalid_argument& e) {
+      throw ModelError(body.where, key, e.what());
+    }
+    plan.body = beam.body;
+    frame.modal = static_cast<int>(i);
+    frame.loaded = true;
+    frame.isotropic = false;
+    a.velocity_dependent_forces = true;  // its centrifugal, Coriolis and gyroscopic terms
+    // Attachments: at the root, where the modes leave the frame's motion alone.
+    const double tolerance = 1e-9 * beam.length;
+    const auto at_root = [&](const Eigen::Vector3d& point, const SourceLocation& where, const std::string& what) {
+      if ((point - plan.root).norm() > tolerance) {
+        const Eigen::Vector3d world = body.position + mbrt::rotation_matrix(body.orientation) * plan.root;
+        throw ModelError(where, what,
+                         "attaches to modal body '" + body.name + "' away from its root; put it at the root (" +
+                             std::to_string(world.x()) + ", " + std::to_string(world.y()) + ", " + std::to_string(world.z()) +
+                             " at t = 0), or use a nodal beam (drop modes)");
+      }
+    };
+    for (const ConstraintBlock& c : a.constraints) {
+      if (c.source != ConstraintSource::joint) continue;
+      if (c.body1 == beam.body) at_root(c.frame.s1, c.where, "joints." + c.name);
+      if (c.body2 == beam.body) at_root(c.frame.s2, c.where, "joints." + c.name);
+    }
+    for (const ForcePlan& f : a.forces) {
+      const Force& force = model.forces[static_cast<size_t>(f.model_index)];
+      const std::string what = "forces[" + std::to_string(f.model_index) + "]";
+      if (force.type == ForceType::force && force.body == beam.body) at_root(f.point, force.where, what);
+      if (force.type == ForceType::spring_damper && force.body1 == beam.body) at_root(f.spring.s1, force.where, what);
+      if (force.type == ForceType::spring_damper && force.body2 == beam.body) at_root(f.spring.s2, force.where, what);
+    }
+    plans.push_back(std::move(plan));
+  }
+  return plans;
 }
 
 Analysis analyse(const Model& model, const Specializations& specialize) {
@@ -685,6 +747,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   }
   a.mechanism = mechanisms(model, a.constraints);
   a.contacts = contact_plans(model, a);
+  a.modal = modal_plans(model, a);
   check_absolute_friction(model);
   if (mbrt::joint_space(model.solver.scheme)) {
     a.tree_frames = plan_tree_frames(model, a.constraints);

@@ -12,6 +12,7 @@
 #include <mbrt/forces.hpp>
 #include <mbrt/joints.hpp>
 
+#include "modal_body.hpp"
 #include "model.hpp"
 #include "partition.hpp"
 #include "specializations.hpp"
@@ -29,6 +30,7 @@ struct BodyPlan {
   bool loaded;          // some applied load acts on it (gravity, gyroscopic torque, force, input)
   bool tunable_mass = false;     // its mass or inertia is a runtime parameter (docs/parameters.md)
   bool tunable_inertia = false;  // its inertia's diagonal is: no isotropic specialization
+  int modal = -1;                // a modal body's frame: its Analysis::modal index
 };
 
 enum class ConstraintSource { joint, driver };
@@ -141,6 +143,7 @@ struct Analysis {
   bool nonholonomic = false;                 // rows on velocities only
   std::vector<ForcePlan> forces;
   std::vector<mbrt::BeamElement> beams;  // same order as Model::beam_elements
+  std::vector<ModalPlan> modal;          // same order as Model::modal
   std::vector<InputPlan> inputs;  // same order as Model::inputs
   std::vector<ContactPlan> contacts;  // same order as Model::contacts
   std::vector<int> mechanism;  // per body: the first body of its mechanism (bodies joined by joints or drivers)

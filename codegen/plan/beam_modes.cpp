@@ -188,4 +188,32 @@ Eigen::VectorXd clamped_static_displacement(const BeamProperties& b, const Eigen
   return out;
 }
 
+BeamField beam_field(const BeamProperties& b, const Eigen::MatrixXd& shapes) {
+  check_beam(b);
+  const int modes = static_cast<int>(shapes.cols());
+  const double l = b.length / b.elements;
+  const int points = b.elements * static_cast<int>(kGaussPoints.size());
+  BeamField f{Eigen::VectorXd(points), Eigen::VectorXd(points), {}};
+  f.displacement.reserve(static_cast<size_t>(points));
+  for (int k = 0; k < b.elements; ++k) {
+    const int i = kNodeCoordinates * k, j = i + kNodeCoordinates;
+    for (size_t g = 0; g < kGaussPoints.size(); ++g) {
+      const double s = kGaussPoints[g];
+      const int at = k * static_cast<int>(kGaussPoints.size()) + static_cast<int>(g);
+      f.x[at] = (k + s) * l;
+      f.mass[at] = b.rho_A * kGaussWeights[g] * l;
+      const Row4 h = hermite(s, l);
+      Eigen::Matrix<double, 3, Eigen::Dynamic> u(3, modes);
+      for (int m = 0; m < modes; ++m) {
+        const auto c = shapes.col(m);
+        u(0, m) = (1 - s) * c[i] + s * c[j];
+        u(1, m) = h[0] * c[i + 1] + h[1] * c[i + 5] + h[2] * c[j + 1] + h[3] * c[j + 5];
+        u(2, m) = h[0] * c[i + 2] - h[1] * c[i + 4] + h[2] * c[j + 2] - h[3] * c[j + 4];
+      }
+      f.displacement.push_back(u);
+    }
+  }
+  return f;
+}
+
 }  // namespace mbrt::codegen

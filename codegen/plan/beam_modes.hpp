@@ -16,6 +16,8 @@
 // small rotations about x, y, z.
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
 namespace mbrt::codegen {
@@ -74,5 +76,17 @@ BeamModes beam_modes(const BeamProperties& b, BeamSupport support, int kept, dou
 // spin_rate^2 times the geometric stiffness.
 Eigen::VectorXd clamped_static_displacement(const BeamProperties& b, const Eigen::VectorXd& load,
                                             double spin_rate = 0.0, double hub_radius = 0.0);
+
+// The beam's mass as quadrature points along it (four per element, exact for
+// products of two element shapes), for integrals of the displacement field
+// such as a modal body's inertia invariants: at point k, x[k] from the root
+// carries mass[k] (rho_A times the weight) and moves by displacement[k] q
+// (3 x modes: x, y, z) for modal coordinates q of `shapes`.
+struct BeamField {
+  Eigen::VectorXd x, mass;
+  std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> displacement;
+};
+
+BeamField beam_field(const BeamProperties& b, const Eigen::MatrixXd& shapes);
 
 }  // namespace mbrt::codegen

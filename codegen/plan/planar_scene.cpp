@@ -174,7 +174,7 @@ PlanarPlan plan_planar(const Model& model, const Analysis& a) {
     plan.refusal = "the model has contacts (docs/contact.md)";
     return plan;
   }
-  if (!a.beams.empty()) {
+  if (!a.beams.empty() || !a.modal.empty()) {
     plan.refusal = "the model has flexible bodies (docs/flexible.md)";
     return plan;
   }

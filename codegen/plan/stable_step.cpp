@@ -10,6 +10,8 @@
 
 #include <mbrt/rotation.hpp>
 
+#include "modal_body.hpp"
+
 namespace mbrt::codegen {
 
 namespace {
@@ -218,6 +220,29 @@ StableStep estimate_stable_step(const Model& m) {
     // (2 / w) (sqrt(1 + z^2) - z), z = damping w / 2: as a higher frequency.
     const double w = std::sqrt(2 * std::max({translation, twist, bending})), z = c.damping * w / 2;
     stiffest(w / (std::sqrt(1 + z * z) - z), "beam element " + b1.name + " - " + b2.name);
+  }
+  // A modal body's highest mode: its elastic and damping forces are explicit
+  // (central difference: h < 2 / w, with the damping as above). The modes
+  // are clamped to the frame, but the frame moves with them: with the frame
+  // free (what the body's joints can only lower) they are stiffer, by the
+  // mass the frame takes, M0 = [M_rigid, S; S^T, I] against diag(0, w^2).
+  for (const ModalBeam& beam : m.modal) {
+    const ModalPlan p = plan_modal_body({beam.length, beam.EA, beam.GJ, beam.EIy, beam.EIz, beam.rho_A, beam.rho_J, beam.elements},
+                                        beam.modes, beam.damping);
+    const int n = beam.modes;
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 + n, 6 + n), K = Eigen::MatrixXd::Zero(6 + n, 6 + n);
+    M.topLeftCorner<3, 3>() = p.m * Eigen::Matrix3d::Identity();
+    M.block<3, 3>(3, 3) = p.J;
+    M.topRightCorner(3, n) = p.St_T.transpose();
+    M.block(3, 6, 3, n) = p.Sr_T.transpose();
+    M.bottomLeftCorner(n, 6) = M.topRightCorner(6, n).transpose();
+    M.bottomRightCorner(n, n) = Eigen::MatrixXd::Identity(n, n);
+    K.bottomRightCorner(n, n) = p.omega.cwiseAbs2().asDiagonal();
+    const double w = std::sqrt(Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(K, M).eigenvalues().maxCoeff());
+    const double z = beam.damping * w / 2;
+    stiffest(w / (std::sqrt(1 + z * z) - z), "modal body " + m.body_name(beam.body) + " (" + std::to_string(n) +
+                                                 " modes, the highest " + std::to_string(p.omega.maxCoeff()) +
+                                                 " rad/s clamped, " + std::to_string(w) + " with its frame free)");
   }
   s.energy_bound = energy;
   const std::vector<bool> locked = rotation_locked(m);

@@ -1,0 +1,111 @@
+// Modal bodies (docs/flexible.md): the constants of include/mbrt/modal_body.hpp
+// per body, its loads, the modal coordinates' kick and drift, its energy and
+// tip outputs. State::modal_q and modal_p hold each body's coordinates and
+// momenta in the first N entries of a Vec6; the momenta ride in BodyVectors
+// after the bodies, where constraint forces leave them alone.
+#include "emitter.hpp"
+
+namespace mbrt::codegen {
+
+namespace {
+
+std::string matrix(const Eigen::MatrixXd& m) {
+  std::string s;
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) s += (s.empty() ? "" : ", ") + num(m(i, j));
+  return s;
+}
+
+}  // namespace
+
+std::string Emitter::modal_coordinates(int k, const std::string& field) const {
+  return "s." + field + modal_slot(k) + ".head<" + std::to_string(a_.modal[static_cast<size_t>(k)].modes) + ">()";
+}
+
+void Emitter::modal_constants(std::ostringstream& o) const {
+  if (!modal()) return;
+  o << "\n// Modal bodies: the frame's reduced inverse mass, the modes' coupling, stiffness,\n"
+    << "// damping, geometric stiffness and inertia invariants (include/mbrt/modal_body.hpp).\n";
+  for (const ModalPlan& p : a_.modal) {
+    const std::string n = body(p.body).name, N = std::to_string(p.modes);
+    o << "const mbrt::ModalBody<" << N << "> " << n << "_modal = [] {\n  mbrt::ModalBody<" << N << "> b;\n"
+      << "  b.reduced_inverse << " << matrix(p.reduced_inverse) << ";\n"
+      << "  b.St_T << " << matrix(p.St_T) << ";\n  b.Sr_T << " << matrix(p.Sr_T) << ";\n"
+      << "  b.stiffness << " << matrix(p.omega.cwiseAbs2()) << ";  // omega^2: " << matrix(p.omega) << " rad/s\n"
+      << "  b.damping << " << matrix(p.damping) << ";\n"
+      << "  b.kg_spin << " << matrix(p.kg_spin) << ";\n  b.kg_axial << " << matrix(p.kg_axial) << ";\n";
+    for (int i = 0; i < 9; ++i) {
+      o << "  b.E[" << i << "] << " << matrix(p.E[static_cast<size_t>(i)]) << ";\n"
+        << "  b.G[" << i << "] << " << matrix(p.G[static_cast<size_t>(i)]) << ";\n";
+    }
+    o << "  b.J = " << mat3(p.J) << ";\n  b.m = " << num(p.m) << ";\n  return b;\n}();\n"
+      << "const mbrt::ModalPoint<" << N << "> " << n << "_tip = [] {\n  mbrt::ModalPoint<" << N << "> c;\n"
+      << "  c.point = " << vec3(p.tip) << ";\n  c.displacement << " << matrix(p.tip_displacement) << ";\n"
+      << "  c.rotation << " << matrix(p.tip_rotation) << ";\n  return c;\n}();\n";
+  }
+}
+
+void Emitter::modal_loads(std::ostringstream& o) const {
+  for (size_t k = 0; k < a_.modal.size(); ++k) {
+    const int i = a_.modal[k].body, n = static_cast<int>(k);
+    o << "  {  // modal body " << body(i).name << ": inertia terms of the deformed body, elastic and damping loads\n"
+      << "    const auto e = mbrt::modal_loads<" << a_.modal[k].modes << ">(" << body(i).name << "_modal, " << pose(i) << ".R, k.vel" << at(i) << ".v, k.vel"
+      << at(i) << ".w,\n        " << acceleration_of(i) << ", " << modal_coordinates(n, "modal_rate") << ", "
+      << (a_.gravity ? gravity() : "mbrt::Vec3::Zero()") << ", "
+      << modal_coordinates(n, "modal_q") << ", " << modal_coordinates(n, "modal_p") << ", l.w" << at(i) << ");\n"
+      << "    l.modal" << modal_slot(n) << ".setZero();\n"
+      << "    l.modal" << modal_slot(n) << ".head<" << a_.modal[k].modes << ">() = e.momentum_rate;\n"
+      << "    l.elastic_energy += e.potential;\n  }\n";
+  }
+}
+
+void Emitter::modal_kick(std::ostringstream& o) const {
+  if (modal()) o << "  for (int b = 0; b < kModalBodies; ++b) s.modal_p[b] += (0.5 * h) * s.modal_rate[b];\n";
+}
+
+// The modal rates at the half-step velocities, with the frame's turn over
+// the step averaged (the body-axes velocity it couples to is at mid-step).
+void Emitter::modal_drift(std::ostringstream& o) const {
+  for (size_t k = 0; k < a_.modal.size(); ++k) {
+    const int i = a_.modal[k].body, n = static_cast<int>(k);
+    const std::string st = state_of(i);
+    o << "  " << modal_coordinates(n, "modal_q") << " += h * mbrt::modal_rates<" << a_.modal[k].modes << ">(" << body(i).name << "_modal, 0.5 * ("
+      << body(i).name << "_start + mbrt::rotation_matrix(" << st << ".p)), " << st << ".v, " << st << ".w, "
+      << modal_coordinates(n, "modal_p") << ");\n";
+  }
+}
+
+void Emitter::modal_initial_momenta(std::ostringstream& o) const {
+  if (!modal()) return;
+  o << "  s.modal_q.fill(mbrt::Vec6::Zero());  // undeformed, at rest in the frame\n  s.modal_p.fill(mbrt::Vec6::Zero());\n"
+    << "  s.modal_rate.fill(mbrt::Vec6::Zero());\n";
+  for (size_t k = 0; k < a_.modal.size(); ++k) {
+    const int i = a_.modal[k].body, n = static_cast<int>(k);
+    const std::string st = state_of(i), b = body(i).name + "_modal";
+    o << "  " << modal_coordinates(n, "modal_p") << " = " << b << ".St_T * (mbrt::rotation_matrix(" << st << ".p).transpose() * "
+      << st << ".v) + " << b << ".Sr_T * " << st << ".w;\n"
+      << "  " << acceleration_of(i) << " = {mbrt::Vec3::Zero(), mbrt::Vec3::Zero()};  // the loads' last accelerations at the start\n";
+  }
+}
+
+void Emitter::modal_energy(std::ostringstream& o) const {
+  for (size_t k = 0; k < a_.modal.size(); ++k) {
+    const int i = a_.modal[k].body, n = static_cast<int>(k);
+    const std::string st = state_of(i);
+    o << "  e.kinetic += mbrt::modal_kinetic_energy<" << a_.modal[k].modes << ">(" << body(i).name << "_modal, " << pose(i) << ".R, " << st << ".v, "
+      << st << ".w, " << modal_coordinates(n, "modal_q") << ", " << modal_coordinates(n, "modal_p") << ");\n";
+  }
+}
+
+std::string Emitter::modal_tip_output(const Output& out, const std::string& at) const {
+  const int i = out.body;
+  const int k = plan(i).modal;
+  const std::string n = body(i).name, N = "<" + std::to_string(a_.modal[static_cast<size_t>(k)].modes) + ">";
+  if (out.type == OutputType::body_pose) {
+    return "  mbrt::modal_point_pose" + N + "(" + n + "_tip, " + state_of(i) + ", " + modal_coordinates(k, "modal_q") + ", " + at + ");\n";
+  }
+  return "  mbrt::modal_point_velocity" + N + "(" + n + "_modal, " + n + "_tip, " + state_of(i) + ", " + modal_coordinates(k, "modal_q") +
+         ", " + modal_coordinates(k, "modal_p") + ", " + at + ");\n";
+}
+
+}  // namespace mbrt::codegen

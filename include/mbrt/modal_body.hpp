@@ -1,0 +1,213 @@
+// A modal flexible body (docs/flexible.md): a body frame's motion plus N
+// modal coordinates q of a beam clamped to the frame at its root, in the
+// floating frame of reference (Jerkovsky 1978, "The structure of multibody
+// dynamics equations", J. Guidance Control 1(3); the inertia invariants of
+// Shabana 2005, Dynamics of Multibody Systems, ch. 5).
+//
+// The frame is the undeformed beam's centre of mass and axes (x along the
+// beam). A material point at rho0 moves to rho0 + Psi(rho0) q. The mass
+// matrix in (v world, w body, qdot) is taken at q = 0,
+//   M0 = [m I, 0, R St; 0, J, Sr; St^T R^T, Sr^T, I],  St = int Psi, Sr = int rho0 x Psi,
+// and every other inertia term is a load: the centrifugal and Coriolis
+// terms of the deformed body, exact to second order in q, and the products
+// of q with the accelerations, from the last step's. The step keeps the frame's generalized
+// velocities and the modal momentum p = qdot + St^T R^T v + Sr^T w, which
+// constraint forces on the frame leave alone; the frame then moves with the
+// constant reduced mass blockdiag(m I, J) - S S^T (S = [St; Sr], body axes)
+// and the load F - [R St; Sr] f_q, where f_q is the modes' generalized force.
+//
+// Geometric stiffness (Kane, Ryan & Banerjee 1987): the axial force of the
+// frame's rigid motion, from the spin about the beam's normals and the
+// frame's axial acceleration less gravity, with precomputed matrices.
+#pragma once
+
+#include <array>
+
+#include "mbrt/body_state.hpp"
+#include "mbrt/forces.hpp"
+#include "mbrt/rotation.hpp"
+
+namespace mbrt {
+
+template <int N>
+struct ModalBody {
+  using Modes = Eigen::Matrix<double, N, 1>;
+  using ModeMatrix = Eigen::Matrix<double, N, N>;
+  Eigen::Matrix<double, 6, 6> reduced_inverse;  // (blockdiag(m I, J) - S S^T)^-1, body axes
+  Eigen::Matrix<double, N, 3> St_T, Sr_T;       // St^T, Sr^T
+  Modes stiffness;                              // omega_i^2
+  Modes damping;                                // 1/s: modal damping
+  ModeMatrix kg_spin;                           // geometric stiffness per (w_y^2 + w_z^2)
+  ModeMatrix kg_axial;                          // per m/s^2 of axial acceleration less gravity, towards the root
+  std::array<ModeMatrix, 9> E;                  // int Psi_a^T Psi_b dm, index 3 a + b
+  std::array<Eigen::Matrix<double, 1, N>, 9> G; // int rho0_a Psi_b dm, index 3 a + b
+  Mat3 J;                                       // the undeformed body's inertia about its centre, body axes
+  double m;
+};
+
+// M^-1 of the frame's 6 velocities in (v world, w body): R-turned reduced inverse.
+struct ModalInverseMass {
+  const Eigen::Matrix<double, 6, 6>& reduced_inverse;
+  Mat3 R;
+};
+
+template <int N>
+inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerParameters& p) noexcept {
+  return {b.reduced_inverse, rotation_matrix(p)};
+}
+
+inline Vec6 inverse_mass_times(const ModalInverseMass& b, const Wrench& w) noexcept {
+  Vec6 body;
+  body << b.R.transpose() * w.f, w.tau;
+  const Vec6 a = b.reduced_inverse * body;
+  Vec6 out;
+  out << b.R * a.head<3>(), a.tail<3>();
+  return out;
+}
+
+template <int K>
+inline Eigen::Matrix<double, 6, K> inverse_mass_times_transpose(const ModalInverseMass& b,
+                                                                const Eigen::Matrix<double, K, 6>& J) noexcept {
+  Eigen::Matrix<double, 6, K> body;
+  body.template topRows<3>() = b.R.transpose() * J.template leftCols<3>().transpose();
+  body.template bottomRows<3>() = J.template rightCols<3>().transpose();
+  Eigen::Matrix<double, 6, K> x = b.reduced_inverse * body;
+  x.template topRows<3>() = b.R * x.template topRows<3>();
+  return x;
+}
+
+namespace modal_detail {
+
+// X_ab = sum over the 9 (a, b) of T[3a + b] applied to q, qd, ...
+template <int N>
+inline Mat3 field_product(const std::array<Eigen::Matrix<double, 1, N>, 9>& G, const Eigen::Matrix<double, N, 1>& q) noexcept {
+  Mat3 X;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) X(a, b) = (G[static_cast<size_t>(3 * a + b)] * q)(0);
+  return X;
+}
+
+template <int N>
+inline Mat3 field_product(const std::array<Eigen::Matrix<double, N, N>, 9>& E, const Eigen::Matrix<double, N, 1>& x,
+                          const Eigen::Matrix<double, N, 1>& y) noexcept {
+  Mat3 X;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) X(a, b) = x.dot(E[static_cast<size_t>(3 * a + b)] * y);
+  return X;
+}
+
+inline Vec3 vee_of(const Mat3& P) noexcept { return {P(1, 2) - P(2, 1), P(2, 0) - P(0, 2), P(0, 1) - P(1, 0)}; }
+
+}  // namespace modal_detail
+
+// The modal rates qdot from the momentum p and the frame's velocities.
+template <int N>
+inline Eigen::Matrix<double, N, 1> modal_rates(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
+                                               const Eigen::Matrix<double, N, 1>& p) noexcept {
+  return p - b.St_T * (R.transpose() * v) - b.Sr_T * w;
+}
+
+// The deformed body's inertia about the frame's origin, body axes.
+template <int N>
+inline Mat3 modal_inertia(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
+  const Mat3 X = modal_detail::field_product<N>(b.G, q);    // int rho0 u^T
+  const Mat3 W = modal_detail::field_product<N>(b.E, q, q);  // int u u^T
+  return b.J + (2.0 * X.trace() + W.trace()) * Mat3::Identity() - X - X.transpose() - W;
+}
+
+template <int N>
+struct ModalLoad {
+  Eigen::Matrix<double, N, 1> momentum_rate;  // dp/dt
+  double potential;                           // elastic and geometric strain energy, gravity of the deformation
+};
+
+// Adds the body's inertia and elastic terms to its frame load (force world,
+// torque body) and returns the modal momentum's rate. last holds the frame's
+// accelerations and last_rate the momentum's rate at the last step, g is
+// gravity.
+template <int N>
+inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
+                                const RigidAcceleration& last, const Eigen::Matrix<double, N, 1>& last_rate, const Vec3& g,
+                                const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
+                                Wrench& load) noexcept {
+  using Modes = Eigen::Matrix<double, N, 1>;
+  const Vec3 vb = R.transpose() * v, gb = R.transpose() * g, ab = R.transpose() * last.a, alpha = last.alpha;
+  const Modes qd = p - b.St_T * vb - b.Sr_T * w;
+  const Modes qdd = last_rate - b.St_T * (ab - w.cross(vb)) - b.Sr_T * alpha;
+  const Vec3 c = b.St_T.transpose() * q, cd = b.St_T.transpose() * qd;  // int u, int udot
+  const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);  // int rho udot^T
+  const Mat3 U = modal_detail::field_product<N>(b.E, q, qdd);                                           // int u uddot^T
+  const Mat3 J = modal_inertia<N>(b, q);
+  // Rigid: the frame's force and torque beyond M0's.
+  const Vec3 f = -(w.cross(w.cross(c)) + 2.0 * w.cross(cd) + alpha.cross(c));
+  const Vec3 tau = -(w.cross(J * w) + 2.0 * (P.trace() * w - P.transpose() * w) + c.cross(ab) + (J - b.J) * alpha +
+                     modal_detail::vee_of(U)) +
+                   c.cross(gb);
+  // Modal: centrifugal and Coriolis, elastic, damping, geometric stiffness, gravity.
+  const double axial = -(ab - gb).x();
+  const typename ModalBody<N>::ModeMatrix kg = (w.y() * w.y() + w.z() * w.z()) * b.kg_spin + axial * b.kg_axial;
+  Modes fq = b.St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd) - kg * q;
+  const double w2 = w.squaredNorm();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const double centrifugal = w[i] * w[j] - (i == j ? w2 : 0.0);
+      const size_t ij = static_cast<size_t>(3 * i + j), ji = static_cast<size_t>(3 * j + i);
+      if (centrifugal != 0.0) fq -= centrifugal * (b.G[ji].transpose() + b.E[ij] * q);
+    }
+  }
+  // int Psi^T (2 w x udot + alpha x u): component i of w x udot is
+  // w_j udot_k - w_k udot_j, (i, j, k) cyclic.
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    const auto& Eik = b.E[static_cast<size_t>(3 * i + k)];
+    const auto& Eij = b.E[static_cast<size_t>(3 * i + j)];
+    fq -= Eik * (2.0 * w[j] * qd + alpha[j] * q) - Eij * (2.0 * w[k] * qd + alpha[k] * q);
+  }
+  load.f += R * (f - b.St_T.transpose() * fq);
+  load.tau += tau - b.Sr_T.transpose() * fq;
+  return {fq - b.St_T * w.cross(vb), 0.5 * q.dot(b.stiffness.cwiseProduct(q) + kg * q) - gb.dot(c)};
+}
+
+// The body's kinetic energy, with the deformed body's inertia terms.
+template <int N>
+inline double modal_kinetic_energy(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
+                                   const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p) noexcept {
+  const Vec3 vb = R.transpose() * v;
+  const Eigen::Matrix<double, N, 1> qd = p - b.St_T * vb - b.Sr_T * w;
+  const Vec3 c = b.St_T.transpose() * q, cd = b.St_T.transpose() * qd;
+  const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);
+  return 0.5 * b.m * vb.squaredNorm() + vb.dot(w.cross(c) + cd) + 0.5 * w.dot(modal_inertia<N>(b, q) * w) +
+         w.dot(modal_detail::vee_of(P)) + 0.5 * qd.squaredNorm();
+}
+
+// A point of the beam (its tip): undeformed place in body axes, and its
+// displacement and small rotation per modal coordinate.
+template <int N>
+struct ModalPoint {
+  Vec3 point;
+  Eigen::Matrix<double, 3, N> displacement, rotation;
+};
+
+// The point's pose: x, y, z (world), then e0..e3 of its section.
+template <int N>
+inline void modal_point_pose(const ModalPoint<N>& c, const RigidState& s, const Eigen::Matrix<double, N, 1>& q,
+                             double* out) noexcept {
+  Eigen::Map<Vec3> position(out);
+  Eigen::Map<EulerParameters> orientation(out + 3);
+  position = s.r + rotation_matrix(s.p) * (c.point + c.displacement * q);
+  orientation = quaternion_product(s.p, cayley_increment(c.rotation * q));
+}
+
+// The point's velocity (world) and its section's angular velocity (body axes).
+template <int N>
+inline void modal_point_velocity(const ModalBody<N>& b, const ModalPoint<N>& c, const RigidState& s,
+                                 const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
+                                 double* out) noexcept {
+  const Mat3 R = rotation_matrix(s.p);
+  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, R, s.v, s.w, p);
+  Eigen::Map<Vec3> velocity(out), angular_velocity(out + 3);
+  velocity = s.v + R * (s.w.cross(c.point + c.displacement * q) + c.displacement * qd);
+  angular_velocity = s.w + c.rotation * qd;
+}
+
+}  // namespace mbrt

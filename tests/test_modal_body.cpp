@@ -1,0 +1,227 @@
+// Modal bodies (docs/flexible.md): the generation-time invariants against the
+// beam's finite-element mass and closed forms; generated models at 1 kHz
+// against closed forms (a cantilever's static deflection and first bending
+// frequency), an independent model of Simo & Vu-Quoc's spin-up, and
+// conservation laws summed directly over the beam's mass (a free tumbling
+// body); the generator's refusals.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "analysis.hpp"
+#include "beam_modes.hpp"
+#include "modal_body.hpp"
+#include "modal_cantilever.hpp"
+#include "modal_free.hpp"
+#include "modal_free_fine.hpp"
+#include "modal_spin_up.hpp"
+#include "model.hpp"
+#include "spin_up_reference.hpp"
+
+namespace {
+
+using mbrt::Mat3;
+using mbrt::Vec3;
+namespace cg = mbrt::codegen;
+
+Mat3 rotation_of(const mbrt::EulerParameters& p) { return Eigen::Quaterniond(p[0], p[1], p[2], p[3]).toRotationMatrix(); }
+
+// The analysis's error for a model text, or "" when it passes.
+std::string generator_error(const std::string& yaml) {
+  try {
+    cg::analyse(cg::parse_model(yaml, "modal.yaml"));
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("a modal body's invariants agree with its beam's finite-element mass") {
+  const cg::BeamProperties beam{2.0, 4.0e6, 900.0, 1500.0, 2400.0, 3.0, 0.02, 20};
+  const cg::ModalPlan p = cg::plan_modal_body(beam, 4, 0.0);
+  const double m = 6.0;
+  // Unit modal masses: the displacement field's own integral sum_a int Psi_a^T Psi_a.
+  CHECK((p.E[0] + p.E[4] + p.E[8] - Eigen::MatrixXd::Identity(4, 4)).norm() < 1e-12);
+  // The first cantilever mode moves 0.6131 of the beam's mass (its effective mass).
+  CHECK(p.St_T.row(0).squaredNorm() / m == doctest::Approx(0.6131).epsilon(1e-3));
+  // Coupling with the frame's turn about its centre: beam_modes' about the
+  // root, less the turn's translation of the centre, (L/2) e_d x e_x.
+  const cg::BeamModes modes = cg::beam_modes(beam, cg::BeamSupport::clamped_root, 6);
+  for (int k = 0; k < 4; ++k) {
+    // The kept modes are the lowest four (no torsion among them here).
+    CHECK(std::abs(std::abs(p.St_T.row(k).dot(modes.alpha.col(k))) - modes.alpha.col(k).squaredNorm()) < 1e-9);
+    const double sign = p.St_T.row(k).dot(modes.alpha.col(k)) > 0 ? 1.0 : -1.0;
+    for (int d = 0; d < 3; ++d) {
+      const Eigen::Vector3d shift = Eigen::Vector3d::Unit(d).cross(Eigen::Vector3d(1.0, 0, 0));
+      CHECK(p.Sr_T(k, d) == doctest::Approx(sign * (modes.beta(d, k) - shift.dot(modes.alpha.col(k)))).scale(1.0).epsilon(1e-9));
+    }
+  }
+  // The frame's reduced mass is the rigid mass less what the modes take.
+  Eigen::Matrix<double, 6, 6> rigid = Eigen::Matrix<double, 6, 6>::Zero();
+  rigid.diagonal() << m, m, m, 0.02 * 2.0, m * 4.0 / 12, m * 4.0 / 12;
+  Eigen::MatrixXd S(6, 4);
+  S << p.St_T.transpose(), p.Sr_T.transpose();
+  CHECK((p.reduced_inverse * (rigid - S * S.transpose()) - Eigen::Matrix<double, 6, 6>::Identity()).norm() < 1e-10);
+}
+
+TEST_CASE("a modal cantilever at 1 kHz sags by q L^4 / (8 EI) in both planes and swings at its first bending frequency") {
+  namespace m = mbrt::models::modal_cantilever;
+  const double L = 2.0, rho_A = 3.0, EIy = 1500.0, EIz = 2400.0;
+  const double sag_y = -3.0 * rho_A * std::pow(L, 4) / (8 * EIz), sag_z = -4.0 * rho_A * std::pow(L, 4) / (8 * EIy);
+  m::State s = m::initial_state();
+  const double energy0 = m::energy(s).total();
+  m::Outputs y{};
+  double sum_y = 0, sum_z = 0, worst_energy = 0, previous = 0;
+  std::vector<double> up_crossings;
+  const int steps = 20000;  // 20 s
+  for (int i = 0; i < steps; ++i) {
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    m::outputs(s, y);
+    sum_y += y[m::output::tip + 1], sum_z += y[m::output::tip + 2];
+    const double z = y[m::output::tip + 2] - sag_z;
+    if (previous < 0 && z >= 0) up_crossings.push_back(s.t);
+    previous = z;
+    worst_energy = std::max(worst_energy, std::abs(m::energy(s).total() - energy0));
+  }
+  const double period = (up_crossings.back() - up_crossings.front()) / static_cast<double>(up_crossings.size() - 1);
+  const double first = 1.8751040687 * 1.8751040687 * std::sqrt(EIy / (rho_A * std::pow(L, 4)));
+  MESSAGE("4 modes at 1 ms: mean sag " << sum_y / steps << ", " << sum_z / steps << " m (closed form " << sag_y << ", "
+                                       << sag_z << "), period " << period << " s (closed form " << 2 * M_PI / first
+                                       << "), energy error " << worst_energy << " J");
+  // Two modes a plane hold all but 0.5 % of the static deflection.
+  CHECK(sum_y / steps == doctest::Approx(sag_y).epsilon(0.01));
+  CHECK(sum_z / steps == doctest::Approx(sag_z).epsilon(0.01));
+  CHECK(period == doctest::Approx(2 * M_PI / first).epsilon(1e-3));
+  CHECK(worst_energy < 1e-4 * 6.0 * 5.0 * std::abs(sag_z));
+  // The tip's velocity output is the rate of its position output.
+  m::State a = s;
+  m::Outputs ya{}, yb{};
+  m::outputs(a, ya);
+  REQUIRE(m::step(a) == mbrt::StepStatus::ok);
+  m::outputs(a, yb);
+  m::Outputs v{};
+  m::outputs(s, v);
+  const Vec3 mid_rate = (Vec3(yb[0], yb[1], yb[2]) - Vec3(ya[0], ya[1], ya[2])) / m::kStep;
+  CHECK((mid_rate - Vec3(v[m::output::tip_velocity], v[m::output::tip_velocity + 1], v[m::output::tip_velocity + 2])).norm() <
+        0.05 * mid_rate.norm() + 1e-6);
+}
+
+TEST_CASE("the modal spin-up beam at 1 kHz follows the independent modal model with geometric stiffness") {
+  const spin_up::SpinUpReference reference = spin_up::spin_up_reference(true);
+  REQUIRE(!reference.diverged);
+  namespace m = mbrt::models::modal_spin_up;
+  m::State s = m::initial_state();
+  m::Outputs y{};
+  double worst = 0, largest = 0;
+  for (int i = 1; i <= 20000; ++i) {  // 20 s at 1 ms
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    if (i % 10 != 0) continue;
+    m::outputs(s, y);
+    const double theta = spin_up::hub_angle(s.t)[0];
+    const double transverse = -std::sin(theta) * y[0] + std::cos(theta) * y[1];
+    const double reference_tip = reference.tip[static_cast<size_t>(i / 10 - 1)];
+    worst = std::max(worst, std::abs(transverse - reference_tip));
+    largest = std::max(largest, std::abs(reference_tip));
+  }
+  MESSAGE("6 modes at 1 ms: largest tip deflection " << largest << " m, worst difference from the modal model " << worst
+                                                     << " m");
+  CHECK(largest > 0.5);
+  CHECK(worst < 0.02 * largest);
+}
+
+// The largest change of energy, momentum and angular momentum over 10 s of
+// a free modal body model, the latter two summed point by point over the
+// displaced beam (beam_field) plus the sections' polar inertia about the axis.
+struct Conservation {
+  double energy, momentum, angular_momentum, largest_q;
+};
+
+template <class State, class Step, class EnergyOf>
+Conservation free_body_errors(State s, Step step, EnergyOf energy, double h) {
+  const cg::BeamProperties beam{2.0, 2.0e5, 400.0, 300.0, 500.0, 2.0, 0.01, 16};
+  const cg::ModalPlan plan = cg::plan_modal_body(beam, 6, 0.0);
+  const cg::BeamField field = cg::beam_field(beam, plan.shapes);
+  const auto momenta = [&](const State& x) {
+    const mbrt::RigidState& b = x.rigid[0];
+    const Mat3 R = rotation_of(b.p);
+    const Eigen::VectorXd q = x.modal_q[0].head(6), p = x.modal_p[0].head(6);
+    const Eigen::VectorXd qd = p - plan.St_T * (R.transpose() * b.v) - plan.Sr_T * b.w;
+    Vec3 P = Vec3::Zero(), H = R * Vec3(0.01 * 2.0 * b.w.x(), 0, 0);
+    for (Eigen::Index k = 0; k < field.x.size(); ++k) {
+      const Eigen::Matrix<double, 3, Eigen::Dynamic>& D = field.displacement[static_cast<size_t>(k)];
+      const Vec3 rho = Vec3(field.x[k] - 1.0, 0, 0) + D * q;
+      const Vec3 v = b.v + R * (b.w.cross(rho) + D * qd);
+      P += field.mass[k] * v;
+      H += field.mass[k] * (b.r + R * rho).cross(v);
+    }
+    return std::array<Vec3, 2>{P, H};
+  };
+  const auto [p0, h0] = momenta(s);
+  const double e0 = energy(s);
+  Conservation worst{0, 0, 0, 0};
+  const int steps = static_cast<int>(std::lround(10.0 / h));
+  for (int i = 0; i < steps; ++i) {
+    REQUIRE(step(s) == mbrt::StepStatus::ok);
+    const auto [p, hh] = momenta(s);
+    worst.energy = std::max(worst.energy, std::abs(energy(s) - e0) / e0);
+    worst.momentum = std::max(worst.momentum, (p - p0).norm() / p0.norm());
+    worst.angular_momentum = std::max(worst.angular_momentum, (hh - h0).norm() / h0.norm());
+    worst.largest_q = std::max(worst.largest_q, s.modal_q[0].cwiseAbs().maxCoeff());
+  }
+  return worst;
+}
+
+TEST_CASE("a free modal body keeps its energy, momentum and angular momentum to second order in the step") {
+  namespace m = mbrt::models::modal_free;
+  namespace f = mbrt::models::modal_free_fine;
+  const Conservation coarse = free_body_errors(
+      m::initial_state(), [](m::State& s) { return m::step(s); }, [](const m::State& s) { return m::energy(s).total(); },
+      m::kStep);
+  const Conservation fine = free_body_errors(
+      f::initial_state(), [](f::State& s) { return f::step(s); }, [](const f::State& s) { return f::energy(s).total(); },
+      f::kStep);
+  MESSAGE("10 s, relative errors at 1 ms: energy " << coarse.energy << ", momentum " << coarse.momentum
+                                                   << ", angular momentum " << coarse.angular_momentum << "; at 0.25 ms: "
+                                                   << fine.energy << ", " << fine.momentum << ", " << fine.angular_momentum
+                                                   << "; largest modal coordinate " << coarse.largest_q);
+  CHECK(coarse.largest_q > 1e-4);  // the tumbling does bend it
+  CHECK(coarse.energy < 1e-4);
+  CHECK(coarse.momentum < 1e-4);
+  CHECK(coarse.angular_momentum < 2e-3);
+  // A quarter of the step: a sixteenth of the error, where a term of the
+  // model (rather than of the step) would leave it.
+  CHECK(fine.momentum < coarse.momentum / 10);
+  CHECK(fine.angular_momentum < coarse.angular_momentum / 10);
+}
+
+TEST_CASE("the generator refuses what a modal body cannot do, naming the key") {
+  const std::string beam =
+      "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 3, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
+      "rho_A: 2.0, rho_J: 0.01}\n";
+  const std::string pin = "joints:\n  - {name: pin, type: revolute, body1: ground, body2: boom, point: [0, 0, 0], axis: [0, 0, 1]}\n";
+  CHECK(generator_error("name: ok\n" + beam + pin) == "");
+  const std::string off_root = generator_error("name: off\n" + beam +
+                                               "joints:\n  - {name: pin, type: revolute, body1: ground, body2: boom, "
+                                               "point: [1.0, 0, 0], axis: [0, 0, 1]}\n");
+  CHECK(off_root.find("joints.pin") != std::string::npos);
+  CHECK(off_root.find("away from its root") != std::string::npos);
+  const std::string tree = generator_error("name: tree\n" + beam + pin + "solver: {scheme: rk4-tree}\n");
+  CHECK(tree.find("flexible.modes") != std::string::npos);
+  CHECK(tree.find("staggered-pcst, baumgarte or blajer") != std::string::npos);
+  CHECK(generator_error("name: many\n" + std::string(beam).replace(beam.find("modes: 3"), 8, "modes: 7") + pin)
+            .find("at most 6 modes") != std::string::npos);
+  std::string one_element = std::string(beam).replace(beam.find("elements: 10"), 12, "elements: 1");
+  CHECK(generator_error("name: few\n" + one_element.replace(one_element.find("modes: 3"), 8, "modes: 6") + pin)
+            .find("use more elements") != std::string::npos);
+  CHECK(generator_error("name: node\n" + beam +
+                        "joints:\n  - {name: pin, type: revolute, body1: ground, body2: boom@root, point: [0, 0, 0], axis: [0, 0, 1]}\n")
+            .find("is a modal body") != std::string::npos);
+}
