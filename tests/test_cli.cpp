@@ -82,6 +82,23 @@ TEST_CASE("mbrt sim writes the CSV trajectory and ends with a JSON summary") {
   CHECK(rows[1].rfind("0,-1,0,0,0,0,0", 0) == 0);
 }
 
+TEST_CASE("mbrt sim --outputs adds the model's outputs, a modal body's tip among them, and is refused without any") {
+  const fs::path csv = fs::path(MBRT_TEST_WORK_DIR) / "modal_cantilever.csv";
+  const Run r = mbrt("sim " + model("modal_cantilever.yaml") + " --t-end 0.5 --every 100 --outputs --out '" + csv.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::vector<std::string> rows = lines(csv);
+  REQUIRE(rows.size() == 1 + 6);
+  CHECK(rows[0] ==
+        "t,boom.x,boom.y,boom.z,boom.e0,boom.e1,boom.e2,boom.e3,tip.0,tip.1,tip.2,tip.3,tip.4,tip.5,tip.6,"
+        "tip_velocity.0,tip_velocity.1,tip_velocity.2,tip_velocity.3,tip_velocity.4,tip_velocity.5");
+  // The 2 m beam's tip starts at x = 2, level, at rest.
+  CHECK(rows[1].rfind("0,1,0,0,1,0,0,0,2,0,0,1,0,0,0,0,0,0,0,0,0", 0) == 0);
+  const Run none = mbrt("sim " + model("a01_pendulum.yaml") + " --outputs");
+  CHECK(none.exit_code == 2);
+  CHECK(none.err.find("--outputs: model a01_pendulum has no outputs") != std::string::npos);
+}
+
 TEST_CASE("mbrt sim --reactions adds each friction joint's torque and stick state") {
   // The pendulum with 0.2 N m of friction sticks for good within 8 s (docs/friction.md).
   const fs::path csv = fs::path(MBRT_TEST_WORK_DIR) / "friction.csv";

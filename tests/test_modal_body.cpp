@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include "allocation_counter.hpp"
 #include "analysis.hpp"
 #include "beam_modes.hpp"
 #include "modal_body.hpp"
@@ -23,6 +24,7 @@
 #include "modal_spin_up.hpp"
 #include "model.hpp"
 #include "spin_up_reference.hpp"
+#include "step_allocations.hpp"
 
 namespace {
 
@@ -31,6 +33,13 @@ using mbrt::Vec3;
 namespace cg = mbrt::codegen;
 
 Mat3 rotation_of(const mbrt::EulerParameters& p) { return Eigen::Quaterniond(p[0], p[1], p[2], p[3]).toRotationMatrix(); }
+
+struct SpinUp {
+  using State = mbrt::models::modal_spin_up::State;
+  using Workspace = mbrt::models::modal_spin_up::Workspace;
+  static State initial_state() { return mbrt::models::modal_spin_up::initial_state(); }
+  static mbrt::StepStatus step(State& s, Workspace& w) { return mbrt::models::modal_spin_up::step(s, w); }
+};
 
 // The analysis's error for a model text, or "" when it passes.
 std::string generator_error(const std::string& yaml) {
@@ -70,6 +79,26 @@ TEST_CASE("a modal body's invariants agree with its beam's finite-element mass")
   Eigen::MatrixXd S(6, 4);
   S << p.St_T.transpose(), p.Sr_T.transpose();
   CHECK((p.reduced_inverse * (rigid - S * S.transpose()) - Eigen::Matrix<double, 6, 6>::Identity()).norm() < 1e-10);
+}
+
+TEST_CASE("a modal body's static deflection converges to the closed form with the number of modes") {
+  // Bending in x-y only among the lowest modes (EIy far above EIz); a uniform
+  // load q along y: each mode's static coordinate f_i / omega_i^2, f_i = q St_i,y / rho_A.
+  const double L = 2.0, EIz = 2400.0, rho_A = 3.0, load = 10.0;
+  const cg::BeamProperties beam{L, 4.0e9, 9.0e5, 2.4e8, EIz, rho_A, 0.02, 20};
+  const double closed_form = load * std::pow(L, 4) / (8 * EIz);
+  std::vector<double> error;
+  for (int modes = 1; modes <= 4; ++modes) {
+    const cg::ModalPlan p = cg::plan_modal_body(beam, modes, 0.0);
+    double tip = 0;
+    for (int i = 0; i < modes; ++i) tip += p.tip_displacement(1, i) * load / rho_A * p.St_T(i, 1) / (p.omega[i] * p.omega[i]);
+    error.push_back(std::abs(tip / closed_form - 1));
+  }
+  MESSAGE("tip deflection's relative error with 1 to 4 modes: " << error[0] << ", " << error[1] << ", " << error[2] << ", "
+                                                                << error[3]);
+  for (size_t k = 1; k < error.size(); ++k) CHECK(error[k] < error[k - 1]);
+  CHECK(error[0] < 0.03);
+  CHECK(error[3] < 1e-4);
 }
 
 TEST_CASE("a modal cantilever at 1 kHz sags by q L^4 / (8 EI) in both planes and swings at its first bending frequency") {
@@ -225,3 +254,5 @@ TEST_CASE("the generator refuses what a modal body cannot do, naming the key") {
                         "joints:\n  - {name: pin, type: revolute, body1: ground, body2: boom@root, point: [0, 0, 0], axis: [0, 0, 1]}\n")
             .find("is a modal body") != std::string::npos);
 }
+
+TEST_CASE("the step with a modal body allocates nothing") { CHECK(allocations_in<SpinUp>(20000) == 0); }

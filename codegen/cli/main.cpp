@@ -193,11 +193,12 @@ int run(int argc, char** argv) {
                                                       : "no directory " + dir.string() + " for '" + file + "'";
           },
           "FILE"));
-  for (const char* flag : {"--velocities", "--reactions", "--serial"}) {
+  for (const char* flag : {"--velocities", "--reactions", "--outputs", "--serial"}) {
     const std::string f = flag;
     sim_cmd->add_flag_callback(flag, [&sim, flag]() { sim.driver_args.push_back(flag); },
-                               f == "--velocities" ? "add the velocities to the CSV"
+                               f == "--velocities"  ? "add the velocities to the CSV"
                                : f == "--reactions" ? "add the joints' reactions to the CSV"
+                               : f == "--outputs"   ? "add the model's outputs to the CSV (NAME.0, NAME.1, ...)"
                                                     : "run a parallel step's parts on one thread (docs/parallel.md)");
   }
   std::vector<std::string> set;  // --set KEY=VALUE: runtime parameters (docs/parameters.md), checked against the model
@@ -266,6 +267,10 @@ int run(int argc, char** argv) {
   }
   if (hil_cmd->parsed()) {
     if (const std::string why = mbrt::rt::check_rate(hil.link.rate_hz, g.model.solver.step); !why.empty()) usage_error(cmd, why);
+  }
+  if (sim_cmd->parsed() && g.model.outputs.empty() &&
+      std::find(sim.driver_args.begin(), sim.driver_args.end(), "--outputs") != sim.driver_args.end()) {
+    usage_error(cmd, "--outputs: model " + g.model.name + " has no outputs (give it an outputs: list)");
   }
   // --set keys checked against the model before compiling; hil's go to the
   // loop with its other options.

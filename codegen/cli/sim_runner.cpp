@@ -196,6 +196,7 @@ std::string build_program(Program program, const Generated& g, const SimOptions&
   std::string cmd = std::string(toolchain::kCompiler) + " " + compile_flags(p) + " -I" + shell_quote(tmp.string());
   cmd += include_flags() + " -DMBRT_MODEL_NAMESPACE=mbrt::models::" + g.model.name;
   if (!g.model.tunable.empty()) cmd += " -DMBRT_MODEL_PARAMETERS";  // --set KEY=VALUE (docs/parameters.md)
+  if (!g.model.outputs.empty()) cmd += " -DMBRT_MODEL_OUTPUTS";      // --outputs
   if (p.lcm) {
     run_or_throw(std::string(toolchain::kLcmGen) + " -x --cpp-hpath " + shell_quote(tmp.string()) + " " +
                      shell_quote((tmp / (g.model.name + ".lcm")).string()),

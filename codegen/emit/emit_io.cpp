@@ -60,7 +60,8 @@ std::string Emitter::input_target(const Input& in) const {
 }
 std::string Emitter::output_source(const Output& out) const {
   if (out.contact >= 0) return m_.contacts[static_cast<size_t>(out.contact)].name;
-  return out.joint >= 0 ? m_.joints[static_cast<size_t>(out.joint)].name : m_.body_name(out.body);
+  if (out.joint >= 0) return m_.joints[static_cast<size_t>(out.joint)].name;
+  return m_.body_name(out.body) + (out.modal_tip ? "@tip" : "");
 }
 bool Emitter::revolute_output(const Output& out) const {
   return m_.joints[static_cast<size_t>(out.joint)].type == JointType::revolute;

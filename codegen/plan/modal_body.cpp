@@ -1,5 +1,7 @@
 #include "modal_body.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -83,6 +85,26 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   };
   p.kg_spin = projected(-centre);
   p.kg_axial = projected(1.0) - projected(0.0);
+  // Round-off where symmetry makes an entry zero (a bending mode's axial
+  // field, the other plane's coupling): zero, as generated code then says,
+  // against the largest entry of its kind.
+  const auto largest = [](const auto& list) {
+    double x = 0;
+    for (const auto& m : list) x = std::max(x, m.cwiseAbs().maxCoeff());
+    return x;
+  };
+  const auto clean = [](auto& m, double scale) {
+    m = m.unaryExpr([&](double x) { return std::abs(x) <= 1e-12 * scale ? 0.0 : x; });
+  };
+  const double coupling = std::max(p.St_T.cwiseAbs().maxCoeff(), p.Sr_T.cwiseAbs().maxCoeff());
+  clean(p.St_T, coupling), clean(p.Sr_T, coupling);
+  clean(p.kg_spin, p.kg_spin.cwiseAbs().maxCoeff()), clean(p.kg_axial, p.kg_axial.cwiseAbs().maxCoeff());
+  clean(p.reduced_inverse, p.reduced_inverse.cwiseAbs().maxCoeff());
+  const double tip = std::max(p.tip_displacement.cwiseAbs().maxCoeff(), p.tip_rotation.cwiseAbs().maxCoeff());
+  clean(p.tip_displacement, tip), clean(p.tip_rotation, tip);
+  const double e = largest(p.E), g = largest(p.G);
+  for (auto& m : p.E) clean(m, e);
+  for (auto& m : p.G) clean(m, g);
   return p;
 }
 

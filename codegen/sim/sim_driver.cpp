@@ -30,12 +30,13 @@ struct Options {
   long every = 1;
   bool velocities = false;
   bool reactions = false;
+  bool outputs = false;
   bool serial = false;  // the parallel step's parts on the caller's thread only
   std::vector<std::string> set;  // --set KEY=VALUE, in order
 };
 
 [[noreturn]] void usage(const char* why) {
-  std::fprintf(stderr, "sim driver: %s\nusage: sim [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--serial] [--set KEY=VALUE]...\n", why);
+  std::fprintf(stderr, "sim driver: %s\nusage: sim [--t-end T] [--out F.csv] [--every N] [--velocities] [--reactions] [--outputs] [--serial] [--set KEY=VALUE]...\n", why);
   std::exit(2);
 }
 
@@ -52,12 +53,16 @@ Options parse(int argc, char** argv) {
     else if (a == "--every") o.every = std::atol(value());
     else if (a == "--velocities") o.velocities = true;
     else if (a == "--reactions") o.reactions = true;
+    else if (a == "--outputs") o.outputs = true;
     else if (a == "--serial") o.serial = true;
     else if (a == "--set" || a.rfind("--set=", 0) == 0) o.set.push_back(a == "--set" ? value() : argv[i] + 6);
     else usage(("unknown option " + a).c_str());
   }
   if (!(o.t_end >= 0.0)) usage("--t-end must be >= 0");
   if (o.every < 1) usage("--every must be >= 1");
+#ifndef MBRT_MODEL_OUTPUTS
+  if (o.outputs) usage("--outputs: the model has no outputs");
+#endif
   return o;
 }
 
@@ -112,6 +117,13 @@ void write_header(std::FILE* f, const Options& o) {
     write_friction_header<model::State>(f);
     write_contacts_header<model::State>(f);
   }
+#ifdef MBRT_MODEL_OUTPUTS
+  if (o.outputs) {
+    for (const mbrt::OutputInfo& y : model::kOutputInfo) {
+      for (int k = 0; k < y.count; ++k) std::fprintf(f, ",%s.%d", y.name, k);
+    }
+  }
+#endif
   std::fprintf(f, "\n");
 }
 
@@ -147,6 +159,13 @@ void write_row(std::FILE* f, const model::State& s, const Options& o) {
     write_friction(f, s);
     write_contacts(f, s);
   }
+#ifdef MBRT_MODEL_OUTPUTS
+  if (o.outputs) {
+    model::Outputs y;
+    model::outputs(s, y);
+    write_vec(f, y.data(), static_cast<int>(y.size()));
+  }
+#endif
   std::fprintf(f, "\n");
 }
 
