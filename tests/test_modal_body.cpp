@@ -247,6 +247,8 @@ TEST_CASE("the generator refuses what a modal body cannot do, naming the key") {
   CHECK(tree.find("staggered-pcst, baumgarte or blajer") != std::string::npos);
   CHECK(generator_error("name: many\n" + std::string(beam).replace(beam.find("modes: 3"), 8, "modes: 7") + pin)
             .find("at most 6 modes") != std::string::npos);
+  CHECK(generator_error("name: fine\n" + std::string(beam).replace(beam.find("elements: 10"), 12, "elements: 61") + pin)
+            .find("at most 60 elements for a modal body") != std::string::npos);
   std::string one_element = std::string(beam).replace(beam.find("elements: 10"), 12, "elements: 1");
   CHECK(generator_error("name: few\n" + one_element.replace(one_element.find("modes: 3"), 8, "modes: 6") + pin)
             .find("use more elements") != std::string::npos);

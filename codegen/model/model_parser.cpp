@@ -525,6 +525,8 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
     ModalBeam beam{static_cast<int>(model.bodies.size()), length, section.EA, section.GJ, section.EIy, section.EIz,
                    rho_A, rho_J, section.damping, f.elements, read_integer_at_least(*modes, 1)};
     if (beam.modes > 6) fail_expected(*modes, "at most 6 modes");
+    // Six modes converge long before; the modes' eigenproblem grows as the cube.
+    if (beam.elements > 60) fail_expected(b.get("elements"), "at most 60 elements for a modal body");
     Body frame;
     frame.name = f.name;
     frame.where = item.where;

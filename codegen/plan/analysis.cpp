@@ -540,8 +540,11 @@ static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
     try {
       plan = plan_modal_body({beam.length, beam.EA, beam.GJ, beam.EIy, beam.EIz, beam.rho_A, beam.rho_J, beam.elements},
                              beam.modes, beam.damping);
-    } catch (const std::invalid_argument& e) {
+    } catch (const std::exception& e) {
       throw ModelError(body.where, key, e.what());
+    }
+    if (!plan.reduced_inverse.allFinite() || !plan.omega.allFinite() || !plan.St_T.allFinite() || !plan.Sr_T.allFinite()) {
+      throw ModelError(body.where, key, "the beam's modes are not finite numbers; check its properties' magnitudes");
     }
     plan.body = beam.body;
     frame.modal = static_cast<int>(i);
