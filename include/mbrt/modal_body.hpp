@@ -132,7 +132,7 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
                                 Wrench& load) noexcept {
   using Modes = Eigen::Matrix<double, N, 1>;
   const Vec3 vb = R.transpose() * v, gb = R.transpose() * g, ab = R.transpose() * last.a, alpha = last.alpha;
-  const Modes qd = p - b.St_T * vb - b.Sr_T * w;
+  const Modes qd = modal_rates<N>(b, R, v, w, p);
   const Modes qdd = last_rate - b.St_T * (ab - w.cross(vb)) - b.Sr_T * alpha;
   const Vec3 c = b.St_T.transpose() * q, cd = b.St_T.transpose() * qd;  // int u, int udot
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);  // int rho udot^T
@@ -173,7 +173,7 @@ template <int N>
 inline double modal_kinetic_energy(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
                                    const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p) noexcept {
   const Vec3 vb = R.transpose() * v;
-  const Eigen::Matrix<double, N, 1> qd = p - b.St_T * vb - b.Sr_T * w;
+  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, R, v, w, p);
   const Vec3 c = b.St_T.transpose() * q, cd = b.St_T.transpose() * qd;
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);
   return 0.5 * b.m * vb.squaredNorm() + vb.dot(w.cross(c) + cd) + 0.5 * w.dot(modal_inertia<N>(b, q) * w) +
