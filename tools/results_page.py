@@ -514,8 +514,9 @@ def fuzz_run(out, name, what):
 def bad_inputs(out):
     paragraph(out, "## Bad inputs")
     paragraph(out, "The model-file parser and the message decoders of the HIL loop are fuzzed by libFuzzer with "
-               "AddressSanitizer and UndefinedBehaviorSanitizer (fuzz/README.md): in every test run the parser "
-               "for 60 s and each decoder for 20 s (ctest `fuzz_*`), longer with `fuzz/run SECONDS`.")
+               "AddressSanitizer and UndefinedBehaviorSanitizer (fuzz/README.md): in a test run configured "
+               "with -DMBRT_TEST_FUZZ=ON the parser for 40 s and each decoder for 10 s (ctest `fuzz_*`), longer "
+               "with `fuzz/run SECONDS`; every test run replays the inputs that once failed (`test_fuzz_regressions`).")
     for name, what in FUZZERS:
         fuzz_run(out, name, what)
     found = sorted(os.path.basename(p) for ext in REGRESSION_EXTENSIONS

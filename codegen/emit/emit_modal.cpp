@@ -29,7 +29,6 @@ void Emitter::modal_constants(std::ostringstream& o) const {
   for (const ModalPlan& p : a_.modal) {
     const std::string n = body(p.body).name, N = std::to_string(p.modes);
     o << "const mbrt::ModalBody<" << N << "> " << n << "_modal = [] {\n  mbrt::ModalBody<" << N << "> b;\n"
-      << "  b.reduced_inverse << " << matrix(p.reduced_inverse) << ";\n"
       << "  b.St_T << " << matrix(p.St_T) << ";\n  b.Sr_T << " << matrix(p.Sr_T) << ";\n"
       << "  b.stiffness << " << matrix(p.omega.cwiseAbs2()) << ";  // omega^2: " << matrix(p.omega) << " rad/s\n"
       << "  b.damping << " << matrix(p.damping) << ";\n"
@@ -50,8 +49,7 @@ void Emitter::modal_loads(std::ostringstream& o) const {
     const int i = a_.modal[k].body, n = static_cast<int>(k);
     o << "  {  // modal body " << body(i).name << ": inertia terms of the deformed body, elastic and damping loads\n"
       << "    const auto e = mbrt::modal_loads<" << a_.modal[k].modes << ">(" << body(i).name << "_modal, " << pose(i) << ".R, k.vel" << at(i) << ".v, k.vel"
-      << at(i) << ".w,\n        " << acceleration_of(i) << ", " << modal_coordinates(n, "modal_rate") << ", "
-      << (a_.gravity ? gravity() : "mbrt::Vec3::Zero()") << ", "
+      << at(i) << ".w,\n        s.modal_frame_acceleration" << modal_slot(n) << ", " << (a_.gravity ? gravity() : "mbrt::Vec3::Zero()") << ", "
       << modal_coordinates(n, "modal_q") << ", " << modal_coordinates(n, "modal_p") << ", l.w" << at(i) << ");\n"
       << "    l.modal" << modal_slot(n) << ".setZero();\n"
       << "    l.modal" << modal_slot(n) << ".head<" << a_.modal[k].modes << ">() = e.momentum_rate;\n"
@@ -59,26 +57,38 @@ void Emitter::modal_loads(std::ostringstream& o) const {
   }
 }
 
+// The frame's acceleration turned into its axes at the configuration it was
+// solved at: turned with the next step's rotation instead, a frame spinning
+// at w would see its centripetal acceleration turned by w h.
+void Emitter::modal_frame_accelerations(std::ostringstream& o) const {
+  for (size_t k = 0; k < a_.modal.size(); ++k) {
+    const int i = a_.modal[k].body;
+    o << "  s.modal_frame_acceleration" << modal_slot(static_cast<int>(k)) << " = mbrt::rotation_matrix(" << state_of(i)
+      << ".p).transpose() * a" << at(i) << ".head<3>();\n";
+  }
+}
+
 void Emitter::modal_kick(std::ostringstream& o) const {
   if (modal()) o << "  for (int b = 0; b < kModalBodies; ++b) s.modal_p[b] += (0.5 * h) * s.modal_rate[b];\n";
 }
 
-// The modal rates at the half-step velocities, with the frame's turn over
-// the step averaged (the body-axes velocity it couples to is at mid-step).
+// The modal coordinates' drift at the half-step velocities, with the frame's
+// turn over the step averaged (the body-axes velocity it couples to is at
+// mid-step) and q's own coupling at mid-step.
 void Emitter::modal_drift(std::ostringstream& o) const {
   for (size_t k = 0; k < a_.modal.size(); ++k) {
     const int i = a_.modal[k].body, n = static_cast<int>(k);
     const std::string st = state_of(i);
-    o << "  " << modal_coordinates(n, "modal_q") << " += h * mbrt::modal_rates<" << a_.modal[k].modes << ">(" << body(i).name << "_modal, 0.5 * ("
-      << body(i).name << "_start + mbrt::rotation_matrix(" << st << ".p)), " << st << ".v, " << st << ".w, "
-      << modal_coordinates(n, "modal_p") << ");\n";
+    o << "  " << modal_coordinates(n, "modal_q") << " += mbrt::modal_drift<" << a_.modal[k].modes << ">(" << body(i).name
+      << "_modal, 0.5 * (" << body(i).name << "_start + mbrt::rotation_matrix(" << st << ".p)), " << st << ".v, " << st
+      << ".w, " << modal_coordinates(n, "modal_q") << ", " << modal_coordinates(n, "modal_p") << ", h);\n";
   }
 }
 
 void Emitter::modal_initial_momenta(std::ostringstream& o) const {
   if (!modal()) return;
   o << "  s.modal_q.fill(mbrt::Vec6::Zero());  // undeformed, at rest in the frame\n  s.modal_p.fill(mbrt::Vec6::Zero());\n"
-    << "  s.modal_rate.fill(mbrt::Vec6::Zero());\n";
+    << "  s.modal_rate.fill(mbrt::Vec6::Zero());\n  s.modal_frame_acceleration.fill(mbrt::Vec3::Zero());\n";
   for (size_t k = 0; k < a_.modal.size(); ++k) {
     const int i = a_.modal[k].body, n = static_cast<int>(k);
     const std::string st = state_of(i), b = body(i).name + "_modal";

@@ -172,10 +172,11 @@ class Emitter {
   std::string mass_parameter() const { return a_.tunable_masses || modal() ? "const State& s, " : ""; }
   std::string mass_argument() const { return a_.tunable_masses || modal() ? "s, " : ""; }
   // Body i's M^-1 in the inverse-mass products: its mass, or a modal body's
-  // reduced mass turned to its orientation (include/mbrt/modal_body.hpp).
+  // reduced mass at its deformation, turned to its orientation
+  // (include/mbrt/modal_body.hpp).
   std::string inverse_mass_of(int i) const {
     if (plan(i).modal < 0) return mass_of(i);
-    return "mbrt::modal_inverse_mass(" + body(i).name + "_modal, " + state_of(i) + ".p)";
+    return "mbrt::modal_inverse_mass<" + std::to_string(a_.modal[static_cast<size_t>(plan(i).modal)].modes) + ">(" + body(i).name + "_modal, " + state_of(i) + ".p, " + modal_coordinates(plan(i).modal, "modal_q") + ")";
   }
 
   // emit_modal.cpp: modal bodies (docs/flexible.md).
@@ -185,6 +186,7 @@ class Emitter {
   void modal_constants(std::ostringstream& o) const;
   void modal_loads(std::ostringstream& o) const;
   void modal_kick(std::ostringstream& o) const;
+  void modal_frame_accelerations(std::ostringstream& o) const;
   void modal_drift(std::ostringstream& o) const;
   void modal_initial_momenta(std::ostringstream& o) const;
   void modal_energy(std::ostringstream& o) const;

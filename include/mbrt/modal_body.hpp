@@ -6,15 +6,18 @@
 //
 // The frame is the undeformed beam's centre of mass and axes (x along the
 // beam). A material point at rho0 moves to rho0 + Psi(rho0) q. The mass
-// matrix in (v world, w body, qdot) is taken at q = 0,
-//   M0 = [m I, 0, R St; 0, J, Sr; St^T R^T, Sr^T, I],  St = int Psi, Sr = int rho0 x Psi,
-// and every other inertia term is a load: the centrifugal and Coriolis
-// terms of the deformed body, exact to second order in q, and the products
-// of q with the accelerations, from the last step's. The step keeps the frame's generalized
-// velocities and the modal momentum p = qdot + St^T R^T v + Sr^T w, which
+// matrix in (v body, w body, qdot) is that of the deformed body, exact to
+// second order in q,
+//   M(q) = [m I, -[c]x, St; [c]x, J(q), Sr(q); St^T, Sr(q)^T, I],
+//   c = St q,  St = int Psi,  Sr(q) = int (rho0 + u) x Psi,
+// J(q) the deformed body's inertia about the frame's origin, and the
+// centrifugal, Coriolis and gyroscopic terms are loads. Nothing in it lags:
+// a light frame (a tool's root section) would otherwise feed its own last
+// accelerations back through q. The step keeps the frame's generalized
+// velocities and the modal momentum p = qdot + St^T R^T v + Sr(q)^T w, which
 // constraint forces on the frame leave alone; the frame then moves with the
-// constant reduced mass blockdiag(m I, J) - S S^T (S = [St; Sr], body axes)
-// and the load F - [R St; Sr] f_q, where f_q is the modes' generalized force.
+// reduced mass Mf(q) - S S^T (Mf the frame's 6x6 block, S = [St; Sr(q)])
+// and the load F - S f_q, where f_q is the modes' generalized force.
 //
 // Geometric stiffness (Kane, Ryan & Banerjee 1987): the axial force of the
 // frame's rigid motion, from the spin about the beam's normals and the
@@ -33,8 +36,7 @@ template <int N>
 struct ModalBody {
   using Modes = Eigen::Matrix<double, N, 1>;
   using ModeMatrix = Eigen::Matrix<double, N, N>;
-  Eigen::Matrix<double, 6, 6> reduced_inverse;  // (blockdiag(m I, J) - S S^T)^-1, body axes
-  Eigen::Matrix<double, N, 3> St_T, Sr_T;       // St^T, Sr^T
+  Eigen::Matrix<double, N, 3> St_T, Sr_T;       // St^T, Sr^T at q = 0
   Modes stiffness;                              // omega_i^2
   Modes damping;                                // 1/s: modal damping
   ModeMatrix kg_spin;                           // geometric stiffness per (w_y^2 + w_z^2)
@@ -44,37 +46,6 @@ struct ModalBody {
   Mat3 J;                                       // the undeformed body's inertia about its centre, body axes
   double m;
 };
-
-// M^-1 of the frame's 6 velocities in (v world, w body): R-turned reduced inverse.
-struct ModalInverseMass {
-  const Eigen::Matrix<double, 6, 6>& reduced_inverse;
-  Mat3 R;
-};
-
-template <int N>
-inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerParameters& p) noexcept {
-  return {b.reduced_inverse, rotation_matrix(p)};
-}
-
-inline Vec6 inverse_mass_times(const ModalInverseMass& b, const Wrench& w) noexcept {
-  Vec6 body;
-  body << b.R.transpose() * w.f, w.tau;
-  const Vec6 a = b.reduced_inverse * body;
-  Vec6 out;
-  out << b.R * a.head<3>(), a.tail<3>();
-  return out;
-}
-
-template <int K>
-inline Eigen::Matrix<double, 6, K> inverse_mass_times_transpose(const ModalInverseMass& b,
-                                                                const Eigen::Matrix<double, K, 6>& J) noexcept {
-  Eigen::Matrix<double, 6, K> body;
-  body.template topRows<3>() = b.R.transpose() * J.template leftCols<3>().transpose();
-  body.template bottomRows<3>() = J.template rightCols<3>().transpose();
-  Eigen::Matrix<double, 6, K> x = b.reduced_inverse * body;
-  x.template topRows<3>() = b.R * x.template topRows<3>();
-  return x;
-}
 
 namespace modal_detail {
 
@@ -100,11 +71,25 @@ inline Vec3 vee_of(const Mat3& P) noexcept { return {P(1, 2) - P(2, 1), P(2, 0) 
 
 }  // namespace modal_detail
 
+// Sr(q)^T = (int (rho0 + u) x Psi)^T: row j is int (rho0 + u) x Psi_j, whose
+// component i is e_iab int u_a Psi_bj = e_iab (q^T E_ab)_j.
+template <int N>
+inline Eigen::Matrix<double, N, 3> turn_coupling_transpose(const ModalBody<N>& b,
+                                                           const Eigen::Matrix<double, N, 1>& q) noexcept {
+  Eigen::Matrix<double, N, 3> T = b.Sr_T;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    T.col(i) += (q.transpose() * (b.E[static_cast<size_t>(3 * j + k)] - b.E[static_cast<size_t>(3 * k + j)])).transpose();
+  }
+  return T;
+}
+
 // The modal rates qdot from the momentum p and the frame's velocities.
 template <int N>
 inline Eigen::Matrix<double, N, 1> modal_rates(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
+                                               const Eigen::Matrix<double, N, 1>& q,
                                                const Eigen::Matrix<double, N, 1>& p) noexcept {
-  return p - b.St_T * (R.transpose() * v) - b.Sr_T * w;
+  return p - b.St_T * (R.transpose() * v) - turn_coupling_transpose<N>(b, q) * w;
 }
 
 // The deformed body's inertia about the frame's origin, body axes.
@@ -115,35 +100,83 @@ inline Mat3 modal_inertia(const ModalBody<N>& b, const Eigen::Matrix<double, N, 
   return b.J + (2.0 * X.trace() + W.trace()) * Mat3::Identity() - X - X.transpose() - W;
 }
 
+// q's change over a drift of h at the half-step velocities (R the frame's
+// turn averaged over the step): qdot at the mid-step q, which Sr(q) needs
+// for second order.
+template <int N>
+inline Eigen::Matrix<double, N, 1> modal_drift(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
+                                               const Eigen::Matrix<double, N, 1>& q,
+                                               const Eigen::Matrix<double, N, 1>& p, double h) noexcept {
+  const Eigen::Matrix<double, N, 1> start_rate = modal_rates<N>(b, R, v, w, q, p);
+  return h * modal_rates<N>(b, R, v, w, q + (0.5 * h) * start_rate, p);
+}
+
+// M^-1 of the frame's 6 velocities in (v world, w body): the R-turned
+// inverse of the reduced mass Mf(q) - S(q) S(q)^T, body axes.
+struct ModalInverseMass {
+  Eigen::Matrix<double, 6, 6> reduced_inverse;
+  Mat3 R;
+};
+
+template <int N>
+inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerParameters& p,
+                                           const Eigen::Matrix<double, N, 1>& q) noexcept {
+  Eigen::Matrix<double, N, 6> S_T;
+  S_T << b.St_T, turn_coupling_transpose<N>(b, q);
+  const Mat3 c = skew(b.St_T.transpose() * q);
+  Eigen::Matrix<double, 6, 6> reduced = -S_T.transpose() * S_T;
+  reduced.topLeftCorner<3, 3>().diagonal().array() += b.m;
+  reduced.topRightCorner<3, 3>() -= c;
+  reduced.bottomLeftCorner<3, 3>() += c;
+  reduced.bottomRightCorner<3, 3>() += modal_inertia<N>(b, q);
+  return {reduced.llt().solve(Eigen::Matrix<double, 6, 6>::Identity()), rotation_matrix(p)};
+}
+
+inline Vec6 inverse_mass_times(const ModalInverseMass& b, const Wrench& w) noexcept {
+  Vec6 body;
+  body << b.R.transpose() * w.f, w.tau;
+  const Vec6 a = b.reduced_inverse * body;
+  Vec6 out;
+  out << b.R * a.head<3>(), a.tail<3>();
+  return out;
+}
+
+template <int K>
+inline Eigen::Matrix<double, 6, K> inverse_mass_times_transpose(const ModalInverseMass& b,
+                                                                const Eigen::Matrix<double, K, 6>& J) noexcept {
+  Eigen::Matrix<double, 6, K> body;
+  body.template topRows<3>() = b.R.transpose() * J.template leftCols<3>().transpose();
+  body.template bottomRows<3>() = J.template rightCols<3>().transpose();
+  Eigen::Matrix<double, 6, K> x = b.reduced_inverse * body;
+  x.template topRows<3>() = b.R * x.template topRows<3>();
+  return x;
+}
+
 template <int N>
 struct ModalLoad {
   Eigen::Matrix<double, N, 1> momentum_rate;  // dp/dt
   double potential;                           // elastic and geometric strain energy, gravity of the deformation
 };
 
-// Adds the body's inertia and elastic terms to its frame load (force world,
-// torque body) and returns the modal momentum's rate. last holds the frame's
-// accelerations and last_rate the momentum's rate at the last step, g is
-// gravity.
+// Adds the body's centrifugal, Coriolis, gyroscopic, elastic and damping
+// terms to its frame load (force world, torque body), reduced by the modes'
+// generalized force, and returns the modal momentum's rate. ab is the
+// frame's last acceleration (body axes), for the axial geometric stiffness;
+// g is gravity.
 template <int N>
-inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
-                                const RigidAcceleration& last, const Eigen::Matrix<double, N, 1>& last_rate, const Vec3& g,
-                                const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
-                                Wrench& load) noexcept {
+inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w, const Vec3& ab,
+                                const Vec3& g, const Eigen::Matrix<double, N, 1>& q,
+                                const Eigen::Matrix<double, N, 1>& p, Wrench& load) noexcept {
   using Modes = Eigen::Matrix<double, N, 1>;
-  const Vec3 vb = R.transpose() * v, gb = R.transpose() * g, ab = R.transpose() * last.a, alpha = last.alpha;
-  const Modes qd = modal_rates<N>(b, R, v, w, p);
-  const Modes qdd = last_rate - b.St_T * (ab - w.cross(vb)) - b.Sr_T * alpha;
+  const Vec3 vb = R.transpose() * v, gb = R.transpose() * g;
+  const Eigen::Matrix<double, N, 3> Sr_T = turn_coupling_transpose<N>(b, q);
+  const Modes qd = p - b.St_T * vb - Sr_T * w;
   const Vec3 c = b.St_T.transpose() * q, cd = b.St_T.transpose() * qd;  // int u, int udot
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);  // int rho udot^T
-  const Mat3 U = modal_detail::field_product<N>(b.E, q, qdd);                                           // int u uddot^T
-  const Mat3 J = modal_inertia<N>(b, q);
-  // Rigid: the frame's force and torque beyond M0's.
-  const Vec3 f = -(w.cross(w.cross(c)) + 2.0 * w.cross(cd) + alpha.cross(c));
-  const Vec3 tau = -(w.cross(J * w) + 2.0 * (P.trace() * w - P.transpose() * w) + c.cross(ab) + (J - b.J) * alpha +
-                     modal_detail::vee_of(U)) +
-                   c.cross(gb);
-  // Modal: centrifugal and Coriolis, elastic, damping, geometric stiffness, gravity.
+  // Rigid: the frame's centrifugal, Coriolis and gyroscopic terms, gravity on the deformation.
+  const Vec3 f = -(w.cross(w.cross(c)) + 2.0 * w.cross(cd));
+  const Vec3 tau = -(w.cross(modal_inertia<N>(b, q) * w) + 2.0 * (P.trace() * w - P.transpose() * w)) + c.cross(gb);
+  // Modal: centrifugal, elastic, damping, geometric stiffness, gravity.
   const double axial = -(ab - gb).x();
   const typename ModalBody<N>::ModeMatrix kg = (w.y() * w.y() + w.z() * w.z()) * b.kg_spin + axial * b.kg_axial;
   Modes fq = b.St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd) - kg * q;
@@ -155,17 +188,18 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
       if (centrifugal != 0.0) fq -= centrifugal * (b.G[ji].transpose() + b.E[ij] * q);
     }
   }
-  // int Psi^T (2 w x udot + alpha x u): component i of w x udot is
-  // w_j udot_k - w_k udot_j, (i, j, k) cyclic.
+  // int Psi^T (w x udot): component i of w x udot is w_j udot_k - w_k udot_j,
+  // (i, j, k) cyclic. Twice that is the Coriolis force; once, the turn of
+  // Sr(q)^T w in p.
+  Modes coriolis = Modes::Zero();
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3, k = (i + 2) % 3;
-    const auto& Eik = b.E[static_cast<size_t>(3 * i + k)];
-    const auto& Eij = b.E[static_cast<size_t>(3 * i + j)];
-    fq -= Eik * (2.0 * w[j] * qd + alpha[j] * q) - Eij * (2.0 * w[k] * qd + alpha[k] * q);
+    coriolis += (w[j] * b.E[static_cast<size_t>(3 * i + k)] - w[k] * b.E[static_cast<size_t>(3 * i + j)]) * qd;
   }
+  fq -= 2.0 * coriolis;
   load.f += R * (f - b.St_T.transpose() * fq);
-  load.tau += tau - b.Sr_T.transpose() * fq;
-  return {fq - b.St_T * w.cross(vb), 0.5 * q.dot(b.stiffness.cwiseProduct(q) + kg * q) - gb.dot(c)};
+  load.tau += tau - Sr_T.transpose() * fq;
+  return {fq - b.St_T * w.cross(vb) + coriolis, 0.5 * q.dot(b.stiffness.cwiseProduct(q) + kg * q) - gb.dot(c)};
 }
 
 // The body's kinetic energy, with the deformed body's inertia terms.
@@ -173,7 +207,7 @@ template <int N>
 inline double modal_kinetic_energy(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
                                    const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p) noexcept {
   const Vec3 vb = R.transpose() * v;
-  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, R, v, w, p);
+  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, R, v, w, q, p);
   const Vec3 c = b.St_T.transpose() * q, cd = b.St_T.transpose() * qd;
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);
   return 0.5 * b.m * vb.squaredNorm() + vb.dot(w.cross(c) + cd) + 0.5 * w.dot(modal_inertia<N>(b, q) * w) +
@@ -204,7 +238,7 @@ inline void modal_point_velocity(const ModalBody<N>& b, const ModalPoint<N>& c, 
                                  const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
                                  double* out) noexcept {
   const Mat3 R = rotation_matrix(s.p);
-  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, R, s.v, s.w, p);
+  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, R, s.v, s.w, q, p);
   Eigen::Map<Vec3> velocity(out), angular_velocity(out + 3);
   velocity = s.v + R * (s.w.cross(c.point + c.displacement * q) + c.displacement * qd);
   angular_velocity = s.w + c.rotation * qd;
