@@ -176,7 +176,9 @@ class Emitter {
   // (include/mbrt/modal_body.hpp).
   std::string inverse_mass_of(int i) const {
     if (plan(i).modal < 0) return mass_of(i);
-    return "mbrt::modal_inverse_mass<" + std::to_string(a_.modal[static_cast<size_t>(plan(i).modal)].modes) + ">(" + body(i).name + "_modal, " + state_of(i) + ".p, " + modal_coordinates(plan(i).modal, "modal_q") + ")";
+    const int k = plan(i).modal;
+    return "mbrt::modal_inverse_mass<" + std::to_string(a_.modal[static_cast<size_t>(k)].modes) + ">(" + body(i).name +
+           "_modal, " + state_of(i) + ".p, " + modal_coordinates(k, "modal_q") + ")";
   }
 
   // emit_modal.cpp: modal bodies (docs/flexible.md).
