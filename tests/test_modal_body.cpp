@@ -21,6 +21,7 @@
 #include "modal_cantilever.hpp"
 #include "modal_free.hpp"
 #include "modal_free_fine.hpp"
+#include "modal_momenta.hpp"
 #include "modal_pinned_tool.hpp"
 #include "modal_pinned_tool_baumgarte.hpp"
 #include "modal_spin_up.hpp"
@@ -93,7 +94,8 @@ TEST_CASE("a modal body's static deflection converges to the closed form with th
   for (int modes = 1; modes <= 4; ++modes) {
     const cg::ModalPlan p = cg::plan_modal_body(beam, modes, 0.0);
     double tip = 0;
-    for (int i = 0; i < modes; ++i) tip += p.tip_displacement(1, i) * load / rho_A * p.St_T(i, 1) / (p.omega[i] * p.omega[i]);
+    const cg::ModalNode tip_node = cg::modal_node(p, beam.elements);
+    for (int i = 0; i < modes; ++i) tip += tip_node.displacement(1, i) * load / rho_A * p.St_T(i, 1) / (p.omega[i] * p.omega[i]);
     error.push_back(std::abs(tip / closed_form - 1));
   }
   MESSAGE("tip deflection's relative error with 1 to 4 modes: " << error[0] << ", " << error[1] << ", " << error[2] << ", "
@@ -169,8 +171,7 @@ TEST_CASE("the modal spin-up beam at 1 kHz follows the independent modal model w
 }
 
 // The largest change of energy, momentum and angular momentum over 10 s of
-// a free modal body model, the latter two summed point by point over the
-// displaced beam (beam_field) plus the sections' polar inertia about the axis.
+// a free modal body model (modal_momenta.hpp).
 struct Conservation {
   double energy, momentum, angular_momentum, largest_q;
 };
@@ -178,30 +179,8 @@ struct Conservation {
 template <class State, class Step, class EnergyOf>
 Conservation free_body_errors(State s, Step step, EnergyOf energy, double h) {
   const cg::BeamProperties beam{2.0, 2.0e5, 400.0, 300.0, 500.0, 2.0, 0.01, 16};
-  const cg::ModalPlan plan = cg::plan_modal_body(beam, 6, 0.0);
-  const cg::BeamField field = cg::beam_field(beam, plan.shapes);
-  const auto momenta = [&](const State& x) {
-    const mbrt::RigidState& b = x.rigid[0];
-    const Mat3 R = rotation_of(b.p);
-    const Eigen::VectorXd q = x.modal_q[0].head(6), p = x.modal_p[0].head(6);
-    // p = qdot + St^T R^T v + Sr(q)^T w, Sr(q) = int (rho0 + u) x Psi over the field.
-    Eigen::MatrixXd Sr_T = Eigen::MatrixXd::Zero(6, 3);
-    for (Eigen::Index k = 0; k < field.x.size(); ++k) {
-      const Eigen::Matrix<double, 3, Eigen::Dynamic>& D = field.displacement[static_cast<size_t>(k)];
-      const Vec3 rho = Vec3(field.x[k] - 1.0, 0, 0) + D * q;
-      for (int j = 0; j < 6; ++j) Sr_T.row(j) += field.mass[k] * rho.cross(Vec3(D.col(j))).transpose();
-    }
-    const Eigen::VectorXd qd = p - plan.St_T * (R.transpose() * b.v) - Sr_T * b.w;
-    Vec3 P = Vec3::Zero(), H = R * Vec3(0.01 * 2.0 * b.w.x(), 0, 0);
-    for (Eigen::Index k = 0; k < field.x.size(); ++k) {
-      const Eigen::Matrix<double, 3, Eigen::Dynamic>& D = field.displacement[static_cast<size_t>(k)];
-      const Vec3 rho = Vec3(field.x[k] - 1.0, 0, 0) + D * q;
-      const Vec3 v = b.v + R * (b.w.cross(rho) + D * qd);
-      P += field.mass[k] * v;
-      H += field.mass[k] * (b.r + R * rho).cross(v);
-    }
-    return std::array<Vec3, 2>{P, H};
-  };
+  const modal_momenta::ModalBeamMass mass(beam, 6);
+  const auto momenta = [&](const State& x) { return mass.momenta(x.rigid[0], x.modal_q[0].head(6), x.modal_p[0].head(6)); };
   const auto [p0, h0] = momenta(s);
   const double e0 = energy(s);
   Conservation worst{0, 0, 0, 0};

@@ -524,7 +524,8 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
   o << ", and the elastic energy stored.\n"
     << "static void " << (tree ? "tree_loads" : "applied_loads") << "([[maybe_unused]] const Kinematics& k, const State& s, Loads& l) noexcept {\n"
     << (has_inputs() ? "  const Inputs& u = s.inputs;\n" : "  (void)s;\n")
-    << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n";
+    << "  l.w.fill(mbrt::" << type("Wrench") << "{});\n  l.elastic_energy = 0.0;\n"
+    << (modal() && !tree ? "  l.modal.fill(mbrt::Vec6::Zero());  // the forces at nodes add the modes' share\n" : "");
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     if (tree) continue;
     if (folded_weights()) o << "  l.w" << at(static_cast<int>(i)) << ".f += " << weight_of(static_cast<int>(i)) << ";\n";
@@ -539,6 +540,10 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
     const std::string n = force_name(static_cast<int>(e));
     if (planar_) {
       planar_force_load(o, f, n);
+      continue;
+    }
+    if (f.node >= 0 || f.node1 >= 0 || f.node2 >= 0) {
+      modal_force_load(o, f, n);
       continue;
     }
     switch (f.type) {

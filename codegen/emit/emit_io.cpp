@@ -61,7 +61,7 @@ std::string Emitter::input_target(const Input& in) const {
 std::string Emitter::output_source(const Output& out) const {
   if (out.contact >= 0) return m_.contacts[static_cast<size_t>(out.contact)].name;
   if (out.joint >= 0) return m_.joints[static_cast<size_t>(out.joint)].name;
-  return m_.body_name(out.body) + (out.modal_tip ? "@tip" : "");
+  return out.node >= 0 ? modal_node_label(out.body, out.node) : m_.body_name(out.body);
 }
 bool Emitter::revolute_output(const Output& out) const {
   return m_.joints[static_cast<size_t>(out.joint)].type == JointType::revolute;
@@ -138,8 +138,8 @@ void Emitter::outputs_function(std::ostringstream& o) const {
         << (out.type == OutputType::joint_position ? "position" : "velocity") << ";\n";
       continue;
     }
-    if (out.modal_tip) {
-      o << modal_tip_output(out, at);
+    if (out.node >= 0) {
+      o << modal_node_output(out, at);
       continue;
     }
     const std::string st = state_of(out.body);

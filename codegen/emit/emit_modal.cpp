@@ -3,6 +3,8 @@
 // tip outputs. State::modal_q and modal_p hold each body's coordinates and
 // momenta in the first N entries of a Vec6; the momenta ride in BodyVectors
 // after the bodies, where constraint forces leave them alone.
+#include <algorithm>
+
 #include "emitter.hpp"
 
 namespace mbrt::codegen {
@@ -37,11 +39,73 @@ void Emitter::modal_constants(std::ostringstream& o) const {
       o << "  b.E[" << i << "] << " << matrix(p.E[static_cast<size_t>(i)]) << ";\n"
         << "  b.G[" << i << "] << " << matrix(p.G[static_cast<size_t>(i)]) << ";\n";
     }
-    o << "  b.J = " << mat3(p.J) << ";\n  b.m = " << num(p.m) << ";\n  return b;\n}();\n"
-      << "const mbrt::ModalPoint<" << N << "> " << n << "_tip = [] {\n  mbrt::ModalPoint<" << N << "> c;\n"
-      << "  c.point = " << vec3(p.tip) << ";\n  c.displacement << " << matrix(p.tip_displacement) << ";\n"
-      << "  c.rotation << " << matrix(p.tip_rotation) << ";\n  return c;\n}();\n";
+    o << "  b.J = " << mat3(p.J) << ";\n  b.m = " << num(p.m) << ";\n  return b;\n}();\n";
+    for (const int k : modal_nodes(p.body)) {
+      const ModalNode node = modal_node(p, k);
+      o << "const mbrt::ModalPoint<" << N << "> " << modal_node_constant(p.body, k) << " = [] {  // " << modal_node_label(p.body, k)
+        << "\n  mbrt::ModalPoint<" << N << "> c;\n"
+        << "  c.point = " << vec3(node.point) << ";\n  c.displacement << " << matrix(node.displacement) << ";\n"
+        << "  c.rotation << " << matrix(node.rotation) << ";\n  return c;\n}();\n";
+    }
   }
+}
+
+std::string Emitter::modal_node_label(int i, int k) const {
+  const int elements = a_.modal[static_cast<size_t>(plan(i).modal)].elements;
+  return body(i).name + "@" + (k == 0 ? "root" : k == elements ? "tip" : std::to_string(k));
+}
+
+std::vector<int> Emitter::modal_nodes(int i) const {
+  std::vector<int> nodes;
+  const auto use = [&](int b, int k) {
+    if (b == i && k >= 0 && std::find(nodes.begin(), nodes.end(), k) == nodes.end()) nodes.push_back(k);
+  };
+  for (const Output& out : m_.outputs) use(out.body, out.node);
+  for (const Force& f : m_.forces) use(f.body, f.node), use(f.body1, f.node1), use(f.body2, f.node2);
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
+}
+
+// A force or spring_damper acting at a modal body's node: the node's place
+// and velocity from the modal coordinates, the frame's load at that place,
+// and the modes' share in l.modal, which modal_loads takes as applied.
+void Emitter::modal_force_load(std::ostringstream& o, const Force& f, const std::string& n) const {
+  const auto end = [&](int b, int k, const std::string& force) {
+    const int m = plan(b).modal;
+    const std::string N = "<" + std::to_string(a_.modal[static_cast<size_t>(m)].modes) + ">";
+    return "    l.modal" + modal_slot(m) + ".head" + N + "() += mbrt::modal_point_force" + N + "(" + modal_node_constant(b, k) +
+           ", " + pose(b) + ".R, " + modal_coordinates(m, "modal_q") + ", " + force + ", l.w" + at(b) + ");\n";
+  };
+  if (f.type == ForceType::force) {
+    o << "  {  // force at " << modal_node_label(f.body, f.node) << "\n" << end(f.body, f.node, n + "_vector") << "  }\n";
+    return;
+  }
+  o << "  {  // spring_damper " << (f.node1 >= 0 ? modal_node_label(f.body1, f.node1) : m_.body_name(f.body1)) << " - "
+    << (f.node2 >= 0 ? modal_node_label(f.body2, f.node2) : m_.body_name(f.body2)) << "\n"
+    << "    mbrt::SpringDamper spring = " << n << ";\n";
+  std::string motions[2];
+  const int bodies[2] = {f.body1, f.body2}, nodes[2] = {f.node1, f.node2};
+  for (int e = 0; e < 2; ++e) {
+    const int b = bodies[e], k = nodes[e];
+    motions[e] = motion(b);
+    if (k < 0) continue;
+    const int m = plan(b).modal;
+    const std::string N = "<" + std::to_string(a_.modal[static_cast<size_t>(m)].modes) + ">", x = "node" + std::to_string(e + 1);
+    o << "    const mbrt::ModalPointMotion " << x << " = mbrt::modal_point_motion" << N << "(" << body(b).name << "_modal, "
+      << modal_node_constant(b, k) << ", " << pose(b) << ", k.vel" << at(b) << ", " << modal_coordinates(m, "modal_q") << ", "
+      << modal_coordinates(m, "modal_p") << ");\n"
+      << "    spring.s" << (e + 1) << " = " << x << ".point;\n";
+    motions[e] = "mbrt::BodyMotion{" + pose(b) + ", " + x + ".velocity}";
+  }
+  o << "    const mbrt::SpringDamperForce e = mbrt::spring_damper(spring, " << motions[0] << ", " << motions[1] << ");\n";
+  for (int e = 0; e < 2; ++e) {
+    const int b = bodies[e];
+    if (b == kGround) continue;
+    const std::string force = e == 0 ? "-e.f2" : "e.f2";
+    if (nodes[e] >= 0) o << end(b, nodes[e], force);
+    else o << "    mbrt::add_point_force(l.w" << at(b) << ", " << pose(b) << ", spring.s" << (e + 1) << ", " << force << ");\n";
+  }
+  o << "    l.elastic_energy += e.energy;\n  }\n";
 }
 
 void Emitter::modal_loads(std::ostringstream& o) const {
@@ -50,8 +114,8 @@ void Emitter::modal_loads(std::ostringstream& o) const {
     o << "  {  // modal body " << body(i).name << ": inertia terms of the deformed body, elastic and damping loads\n"
       << "    const auto e = mbrt::modal_loads<" << a_.modal[k].modes << ">(" << body(i).name << "_modal, " << pose(i) << ".R, k.vel" << at(i) << ".v, k.vel"
       << at(i) << ".w,\n        s.modal_frame_acceleration" << modal_slot(n) << ", " << (a_.gravity ? gravity() : "mbrt::Vec3::Zero()") << ", "
-      << modal_coordinates(n, "modal_q") << ", " << modal_coordinates(n, "modal_p") << ", l.w" << at(i) << ");\n"
-      << "    l.modal" << modal_slot(n) << ".setZero();\n"
+      << modal_coordinates(n, "modal_q") << ", " << modal_coordinates(n, "modal_p") << ", l.modal" << modal_slot(n) << ".head<"
+      << a_.modal[k].modes << ">(), l.w" << at(i) << ");\n"
       << "    l.modal" << modal_slot(n) << ".head<" << a_.modal[k].modes << ">() = e.momentum_rate;\n"
       << "    l.elastic_energy += e.potential;\n  }\n";
   }
@@ -107,14 +171,15 @@ void Emitter::modal_energy(std::ostringstream& o) const {
   }
 }
 
-std::string Emitter::modal_tip_output(const Output& out, const std::string& at) const {
+std::string Emitter::modal_node_output(const Output& out, const std::string& at) const {
   const int i = out.body;
   const int k = plan(i).modal;
   const std::string n = body(i).name, N = "<" + std::to_string(a_.modal[static_cast<size_t>(k)].modes) + ">";
+  const std::string node = modal_node_constant(i, out.node);
   if (out.type == OutputType::body_pose) {
-    return "  mbrt::modal_point_pose" + N + "(" + n + "_tip, " + state_of(i) + ", " + modal_coordinates(k, "modal_q") + ", " + at + ");\n";
+    return "  mbrt::modal_point_pose" + N + "(" + node + ", " + state_of(i) + ", " + modal_coordinates(k, "modal_q") + ", " + at + ");\n";
   }
-  return "  mbrt::modal_point_velocity" + N + "(" + n + "_modal, " + n + "_tip, " + state_of(i) + ", " + modal_coordinates(k, "modal_q") +
+  return "  mbrt::modal_point_velocity" + N + "(" + n + "_modal, " + node + ", " + state_of(i) + ", " + modal_coordinates(k, "modal_q") +
          ", " + modal_coordinates(k, "modal_p") + ", " + at + ");\n";
 }
 

@@ -192,7 +192,12 @@ class Emitter {
   void modal_drift(std::ostringstream& o) const;
   void modal_initial_momenta(std::ostringstream& o) const;
   void modal_energy(std::ostringstream& o) const;
-  std::string modal_tip_output(const Output& out, const std::string& at) const;
+  // Node k of modal body i: NAME@root, NAME@tip or NAME@K, and its constants' name.
+  std::string modal_node_label(int i, int k) const;
+  std::string modal_node_constant(int i, int k) const { return body(i).name + "_node_" + std::to_string(k); }
+  std::vector<int> modal_nodes(int i) const;  // the nodes the outputs and forces name, ascending
+  std::string modal_node_output(const Output& out, const std::string& at) const;
+  void modal_force_load(std::ostringstream& o, const Force& f, const std::string& n) const;
 
   // emit_parameters.cpp: runtime parameters (docs/parameters.md).
   const Parameter* tunable(ParameterTarget target, int index, int component = 0) const;

@@ -142,6 +142,9 @@ struct Force {
   double value = 0.0;                                // torque
   Eigen::Vector3d point = Eigen::Vector3d::Zero();   // force: world at t = 0, fixed in body
   Eigen::Vector3d vector = Eigen::Vector3d::Zero();  // force: world, constant
+  // A modal body's node K (0 root .. elements tip) that the force, or the
+  // spring_damper's end, acts at (NAME@K); -1: a point fixed in the body.
+  int node = -1, node1 = -1, node2 = -1;
 };
 
 // A unilateral frictional contact of one body with a fixed plane
@@ -181,7 +184,7 @@ struct Output {
   int joint = -1;     // joint_position, joint_velocity
   int body = kGround; // body_pose, body_velocity
   int contact = -1;   // contact_force, contact_stuck: Model::contacts index
-  bool modal_tip = false;  // body_pose, body_velocity of a modal body's tip (NAME@tip)
+  int node = -1;      // body_pose, body_velocity of a modal body's node K (NAME@K); -1: its frame
 };
 
 // ali3p (docs/ali3p.md): index-3 augmented Lagrangian with projections.

@@ -394,43 +394,63 @@ Eigen::Matrix3d read_inertia(const Value& v) {
 
 // ---- model parts ----------------------------------------------------------
 
+// A beam's node by name: root, tip or K (0 <= K <= elements).
+int node_number(const Value& v, const std::string& kind, const std::string& body, const std::string& node, int elements) {
+  int k = -1;
+  if (node == "root") k = 0;
+  else if (node == "tip") k = elements;
+  else if (!node.empty() && node.size() < 6 && std::all_of(node.begin(), node.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    k = std::stoi(node);
+  if (k < 0 || k > elements) {
+    fail(v, "unknown node '" + excerpt(node) + "' of " + kind + " '" + body + "' (root, tip or 0 to " + std::to_string(elements) + ")");
+  }
+  return k;
+}
+
 // A flexible body's node: NAME@root, NAME@tip or NAME@K (0 <= K <= elements).
 int read_node_ref(const Value& v, const Model& model, const std::string& body, const std::string& node) {
   Keys names;
   for (const FlexibleBody& f : model.flexible) {
-    if (f.name != body) {
-      names.push_back(f.name);
-      continue;
-    }
-    int k = -1;
-    if (node == "root") k = 0;
-    else if (node == "tip") k = f.elements;
-    else if (!node.empty() && node.size() < 6 && std::all_of(node.begin(), node.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      k = std::stoi(node);
-    if (k < 0 || k > f.elements) {
-      fail(v, "unknown node '" + excerpt(node) + "' of flexible body '" + body + "' (root, tip or 0 to " +
-                  std::to_string(f.elements) + ")");
-    }
-    return f.first_node + k;
+    if (f.name == body) return f.first_node + node_number(v, "flexible body", body, node, f.elements);
+    names.push_back(f.name);
   }
   fail(v, "'" + excerpt(body) + "' is not a flexible body" +
               (names.empty() ? std::string(" (the model has none)") : " (flexible bodies: " + join(names) + ")"));
 }
 
+// A modal body's node: NAME@root, NAME@tip or NAME@K (0 <= K <= elements),
+// and the body in `body`; -1 when `name` is not a modal body.
+int read_modal_node(const Value& v, const Model& model, const std::string& name, const std::string& node, int& body) {
+  for (const ModalBeam& beam : model.modal) {
+    if (model.bodies[static_cast<size_t>(beam.body)].name != name) continue;
+    body = beam.body;
+    return node_number(v, "modal body", name, node, beam.elements);
+  }
+  return -1;
+}
+
 // "ground" or a declared body; returns kGround or the index in model.bodies.
-int read_body_ref(const Value& v, const Model& model) {
+// With `node`, a modal body's node is taken too (NAME@K: the body, and K in
+// *node; -1 for a body itself); without, only joints' places: its root.
+int read_body_ref(const Value& v, const Model& model, int* node = nullptr) {
   Keys names = {"ground"};
   for (const auto& b : model.bodies) names.push_back(b.name);
   const std::string s = read_string(v, "a body name (" + join(names) + ")");
+  if (node) *node = -1;
   if (s == "ground") return kGround;
   if (const auto at = s.find('@'); at != std::string::npos) {
-    for (const ModalBeam& beam : model.modal) {
-      const std::string& name = model.bodies[static_cast<size_t>(beam.body)].name;
-      if (s.substr(0, at) == name) {
-        fail(v, "'" + name + "' is a modal body: joints and forces name it and attach at its root; outputs also take " + name + "@tip");
-      }
+    const std::string name = s.substr(0, at);
+    int body = kGround;
+    const int k = read_modal_node(v, model, name, s.substr(at + 1), body);
+    if (k >= 0 && !node) {
+      fail(v, "'" + name + "' is a modal body: name it, and this attaches at its root (only forces, spring_dampers and outputs "
+                  "take " + name + "@tip or " + name + "@K)");
     }
-    return read_node_ref(v, model, s.substr(0, at), s.substr(at + 1));
+    if (k >= 0) {
+      *node = k;
+      return body;
+    }
+    return read_node_ref(v, model, name, s.substr(at + 1));
   }
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (model.bodies[i].name == s) return static_cast<int>(i);
@@ -439,6 +459,17 @@ int read_body_ref(const Value& v, const Model& model) {
     if (f.name == s) fail(v, "'" + s + "' is a flexible body: name one of its nodes, " + s + "@root, " + s + "@tip or " + s + "@K");
   }
   fail(v, "unknown body '" + excerpt(s) + "' (bodies: " + join(names) + ")");
+}
+
+// Where node K of a modal body is at t = 0, world.
+Eigen::Vector3d modal_node_place(const Model& model, int body, int k) {
+  for (const ModalBeam& beam : model.modal) {
+    if (beam.body != body) continue;
+    const Body& b = model.bodies[static_cast<size_t>(body)];
+    const double x = beam.length * (static_cast<double>(k) / beam.elements - 0.5);  // from the centre, along the frame's x
+    return b.position + mbrt::rotation_matrix(b.orientation) * Eigen::Vector3d(x, 0, 0);
+  }
+  return Eigen::Vector3d::Zero();
 }
 
 // An optional list (joints, forces): an empty value means none.
@@ -830,9 +861,9 @@ Force parse_force(const Value& item, const Model& model) {
 
   if (f.type == ForceType::force) {
     const Value body = s.get("body");
-    f.body = read_body_ref(body, model);
+    f.body = read_body_ref(body, model, &f.node);
     if (f.body == kGround) fail(body, "a force must act on a body, not on ground");
-    f.point = model.bodies[static_cast<std::size_t>(f.body)].position;
+    f.point = f.node >= 0 ? modal_node_place(model, f.body, f.node) : model.bodies[static_cast<std::size_t>(f.body)].position;
     if (auto v = s.find("point")) f.point = read_vector3(*v);
     f.vector = read_vector3(s.get("vector"));
     return f;
@@ -850,16 +881,20 @@ Force parse_force(const Value& item, const Model& model) {
 
   // spring_damper and torque act between two bodies; on one body they
   // would cancel out, which is never what was meant.
-  f.body1 = read_body_ref(s.get("body1"), model);
+  const bool spring = f.type == ForceType::spring_damper;
+  f.body1 = read_body_ref(s.get("body1"), model, spring ? &f.node1 : nullptr);
   const Value body2 = s.get("body2");
-  f.body2 = read_body_ref(body2, model);
+  f.body2 = read_body_ref(body2, model, spring ? &f.node2 : nullptr);
   if (f.body1 == f.body2) {
     fail(body2, "a " + type_name + " must connect two different bodies (both are '" +
                     model.body_name(f.body1) + "')");
   }
-  if (f.type == ForceType::spring_damper) {
-    f.point1 = read_vector3(s.get("point1"));
-    f.point2 = read_vector3(s.get("point2"));
+  if (spring) {
+    // A modal body's node is its own place; a point, if given, must be it.
+    f.point1 = f.node1 >= 0 ? modal_node_place(model, f.body1, f.node1) : read_vector3(s.get("point1"));
+    f.point2 = f.node2 >= 0 ? modal_node_place(model, f.body2, f.node2) : read_vector3(s.get("point2"));
+    if (auto v = s.find("point1"); v && f.node1 >= 0) f.point1 = read_vector3(*v);
+    if (auto v = s.find("point2"); v && f.node2 >= 0) f.point2 = read_vector3(*v);
     f.stiffness = read_non_negative(s.get("stiffness"));
     if (auto v = s.find("damping")) f.damping = read_non_negative(*v);
     f.rest_length = read_non_negative(s.get("rest_length"));
@@ -1102,13 +1137,7 @@ Output parse_output(const Value& item, const Model& model, std::map<std::string,
     out.joint = read_joint_ref(s.get("joint"), model, {JointType::revolute, JointType::prismatic}, "a " + type_name + " output");
   } else {
     const Value body = s.get("body");
-    // A modal body's tip: NAME@tip.
-    const std::string text = body.node.IsScalar() ? body.node.as<std::string>() : std::string();
-    for (const ModalBeam& beam : model.modal) {
-      const std::string& name = model.bodies[static_cast<size_t>(beam.body)].name;
-      if (text == name + "@tip") out.body = beam.body, out.modal_tip = true;
-    }
-    if (!out.modal_tip) out.body = read_body_ref(body, model);
+    out.body = read_body_ref(body, model, &out.node);  // a modal body's node too: NAME@K
     if (out.body == kGround) fail(body, "ground does not move; name a body");
   }
   return out;

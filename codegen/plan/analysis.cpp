@@ -516,8 +516,9 @@ static void check_absolute_friction(const Model& model) {
 }
 
 // Modal bodies (docs/flexible.md): their modes are clamped at the root, so
-// joints and forces attach there; the staggered schemes that step the frame
-// with its reduced mass and the modes' momentum take them.
+// joints attach there; forces and outputs at the root or a node (NAME@K).
+// The staggered schemes that step the frame with its reduced mass and the
+// modes' momentum take them.
 static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
   std::vector<ModalPlan> plans;
   for (size_t i = 0; i < model.modal.size(); ++i) {
@@ -551,15 +552,27 @@ static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
     frame.loaded = true;
     frame.isotropic = false;
     a.velocity_dependent_forces = true;  // its centrifugal, Coriolis and gyroscopic terms
-    // Attachments: at the root, where the modes leave the frame's motion alone.
+    // Attachments: joints at the root, where the modes leave the frame's
+    // motion alone; forces there or at the node they name.
     const double tolerance = 1e-9 * beam.length;
+    const auto place = [&](const Eigen::Vector3d& point) {
+      const Eigen::Vector3d world = body.position + mbrt::rotation_matrix(body.orientation) * point;
+      return "(" + std::to_string(world.x()) + ", " + std::to_string(world.y()) + ", " + std::to_string(world.z()) + " at t = 0)";
+    };
     const auto at_root = [&](const Eigen::Vector3d& point, const SourceLocation& where, const std::string& what) {
       if ((point - plan.root).norm() > tolerance) {
-        const Eigen::Vector3d world = body.position + mbrt::rotation_matrix(body.orientation) * plan.root;
         throw ModelError(where, what,
-                         "attaches to modal body '" + body.name + "' away from its root; put it at the root (" +
-                             std::to_string(world.x()) + ", " + std::to_string(world.y()) + ", " + std::to_string(world.z()) +
-                             " at t = 0), or use a nodal beam (drop modes)");
+                         "attaches to modal body '" + body.name + "' away from its root; put it at the root " + place(plan.root) +
+                             ", name a node (" + body.name + "@K) for a force, or use a nodal beam (drop modes)");
+      }
+    };
+    const auto at_node = [&](int node, const Eigen::Vector3d& point, const SourceLocation& where, const std::string& what) {
+      if (node < 0) return at_root(point, where, what);
+      const Eigen::Vector3d node_point = modal_node(plan, node).point;
+      if ((point - node_point).norm() > tolerance) {
+        throw ModelError(where, what,
+                         "acts at node " + std::to_string(node) + " of modal body '" + body.name + "', which is at " +
+                             place(node_point) + "; drop the point or give that one");
       }
     };
     for (const ConstraintBlock& c : a.constraints) {
@@ -570,9 +583,9 @@ static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
     for (const ForcePlan& f : a.forces) {
       const Force& force = model.forces[static_cast<size_t>(f.model_index)];
       const std::string what = "forces[" + std::to_string(f.model_index) + "]";
-      if (force.type == ForceType::force && force.body == beam.body) at_root(f.point, force.where, what);
-      if (force.type == ForceType::spring_damper && force.body1 == beam.body) at_root(f.spring.s1, force.where, what);
-      if (force.type == ForceType::spring_damper && force.body2 == beam.body) at_root(f.spring.s2, force.where, what);
+      if (force.type == ForceType::force && force.body == beam.body) at_node(force.node, f.point, force.where, what + ".point");
+      if (force.type == ForceType::spring_damper && force.body1 == beam.body) at_node(force.node1, f.spring.s1, force.where, what + ".point1");
+      if (force.type == ForceType::spring_damper && force.body2 == beam.body) at_node(force.node2, f.spring.s2, force.where, what + ".point2");
     }
     plans.push_back(std::move(plan));
   }

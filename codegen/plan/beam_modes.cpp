@@ -150,6 +150,11 @@ BeamModes beam_modes(const BeamProperties& b, BeamSupport support, int kept, dou
     // Eigen sorts ascending; the free beam's 6 rigid-body modes come first.
     m.omega[k] = std::sqrt(std::max(0.0, eig.eigenvalues()[rigid + k]));
     for (size_t i = 0; i < keep.size(); ++i) m.shapes(keep[i], k) = eig.eigenvectors()(i, rigid + k);
+    // A mode's sign is the solver's choice, which rounding can flip between
+    // builds; its largest entry positive makes the generated constants the same.
+    Eigen::Index largest = 0;
+    m.shapes.col(k).cwiseAbs().maxCoeff(&largest);
+    if (m.shapes(largest, k) < 0) m.shapes.col(k) *= -1.0;
   }
   m.KG = m.shapes.transpose() * full.KG * m.shapes;
   m.alpha.resize(3, kept);

@@ -10,6 +10,14 @@
 
 namespace mbrt::codegen {
 
+// Round-off where symmetry makes an entry zero (a bending mode's axial
+// field, the other plane's coupling): zero, as generated code then says,
+// against the largest entry of its kind.
+template <class Matrix>
+void zero_round_off(Matrix& m, double scale) {
+  m = m.unaryExpr([&](double x) { return std::abs(x) <= 1e-12 * scale ? 0.0 : x; });
+}
+
 ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping) {
   const int available = kNodeCoordinates * beam.elements;
   // Enough candidates that the lowest `modes` bending and axial ones are among
@@ -45,9 +53,8 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   p.m = beam.rho_A * L;
   p.J = Eigen::Vector3d(beam.rho_J * L, p.m * L * L / 12, p.m * L * L / 12).asDiagonal();
   p.root = Eigen::Vector3d(-centre, 0, 0);
-  p.tip = Eigen::Vector3d(centre, 0, 0);
-  p.tip_displacement = shapes.block(n - kNodeCoordinates, 0, 3, modes);
-  p.tip_rotation = shapes.block(n - kNodeCoordinates + 3, 0, 3, modes);
+  p.length = L;
+  p.elements = beam.elements;
 
   // Invariants over the beam's mass, positions rho0 = (x - L/2, 0, 0).
   const BeamField f = beam_field(beam, shapes);
@@ -85,27 +92,29 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   };
   p.kg_spin = projected(-centre);
   p.kg_axial = projected(1.0) - projected(0.0);
-  // Round-off where symmetry makes an entry zero (a bending mode's axial
-  // field, the other plane's coupling): zero, as generated code then says,
-  // against the largest entry of its kind.
   const auto largest = [](const auto& list) {
     double x = 0;
     for (const auto& m : list) x = std::max(x, m.cwiseAbs().maxCoeff());
     return x;
   };
-  const auto clean = [](auto& m, double scale) {
-    m = m.unaryExpr([&](double x) { return std::abs(x) <= 1e-12 * scale ? 0.0 : x; });
-  };
   const double coupling = std::max(p.St_T.cwiseAbs().maxCoeff(), p.Sr_T.cwiseAbs().maxCoeff());
-  clean(p.St_T, coupling), clean(p.Sr_T, coupling);
-  clean(p.kg_spin, p.kg_spin.cwiseAbs().maxCoeff()), clean(p.kg_axial, p.kg_axial.cwiseAbs().maxCoeff());
-  clean(p.reduced_inverse, p.reduced_inverse.cwiseAbs().maxCoeff());
-  const double tip = std::max(p.tip_displacement.cwiseAbs().maxCoeff(), p.tip_rotation.cwiseAbs().maxCoeff());
-  clean(p.tip_displacement, tip), clean(p.tip_rotation, tip);
+  zero_round_off(p.St_T, coupling), zero_round_off(p.Sr_T, coupling);
+  zero_round_off(p.kg_spin, p.kg_spin.cwiseAbs().maxCoeff()), zero_round_off(p.kg_axial, p.kg_axial.cwiseAbs().maxCoeff());
+  zero_round_off(p.reduced_inverse, p.reduced_inverse.cwiseAbs().maxCoeff());
   const double e = largest(p.E), g = largest(p.G);
-  for (auto& m : p.E) clean(m, e);
-  for (auto& m : p.G) clean(m, g);
+  for (auto& m : p.E) zero_round_off(m, e);
+  for (auto& m : p.G) zero_round_off(m, g);
   return p;
+}
+
+ModalNode modal_node(const ModalPlan& p, int k) {
+  ModalNode node;
+  node.point = Eigen::Vector3d(p.length * (static_cast<double>(k) / p.elements - 0.5), 0, 0);
+  node.displacement = p.shapes.block(kNodeCoordinates * k, 0, 3, p.modes);
+  node.rotation = p.shapes.block(kNodeCoordinates * k + 3, 0, 3, p.modes);
+  const double largest = std::max(node.displacement.cwiseAbs().maxCoeff(), node.rotation.cwiseAbs().maxCoeff());
+  zero_round_off(node.displacement, largest), zero_round_off(node.rotation, largest);
+  return node;
 }
 
 }  // namespace mbrt::codegen

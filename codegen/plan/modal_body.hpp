@@ -24,10 +24,20 @@ struct ModalPlan {
   Eigen::MatrixXd kg_spin, kg_axial;        // modes x modes
   std::array<Eigen::MatrixXd, 9> E;         // modes x modes
   std::array<Eigen::RowVectorXd, 9> G;      // 1 x modes
-  Eigen::Vector3d root, tip;                // body axes, undeformed
-  Eigen::MatrixXd tip_displacement, tip_rotation;  // 3 x modes
+  Eigen::Vector3d root;                     // body axes, undeformed
+  double length = 0.0;
+  int elements = 0;
   Eigen::MatrixXd shapes;  // the kept modes over the beam's coordinates (beam_modes.hpp)
 };
+
+// Node K of a modal body (0 root .. elements tip): its undeformed place in
+// body axes, and its displacement and small rotation per modal coordinate.
+struct ModalNode {
+  Eigen::Vector3d point;
+  Eigen::MatrixXd displacement, rotation;  // 3 x modes
+};
+
+ModalNode modal_node(const ModalPlan& p, int k);
 
 // The frame sits at the beam's centre, axes along it (x) and its bending axes.
 // Torsion modes are skipped (their sections' rotation is not in the

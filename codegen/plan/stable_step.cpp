@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -243,6 +244,19 @@ StableStep estimate_stable_step(const Model& m) {
     M.bottomLeftCorner(n, 6) = M.topRightCorner(6, n).transpose();
     M.bottomRightCorner(n, n) = Eigen::MatrixXd::Identity(n, n);
     K.bottomRightCorner(n, n) = p.omega.cwiseAbs2().asDiagonal();
+    // A spring at a node stiffens the modes: k J^T J, J the node's motion
+    // [I, -[x]x, Psi] in body axes, summed over the three directions (an
+    // upper bound on the one it pulls along).
+    for (const Force& f : m.forces) {
+      if (f.type != ForceType::spring_damper) continue;
+      for (const auto& [body, node] : {std::pair{f.body1, f.node1}, std::pair{f.body2, f.node2}}) {
+        if (body != beam.body || node < 0) continue;
+        const ModalNode x = modal_node(p, node);
+        Eigen::MatrixXd J(3, 6 + n);
+        J << Eigen::Matrix3d::Identity(), -mbrt::skew(x.point), x.displacement;
+        K += f.stiffness * J.transpose() * J;
+      }
+    }
     const double w = std::sqrt(Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(K, M).eigenvalues().maxCoeff());
     const double z = beam.damping * w / 2;
     stiffest(w / (std::sqrt(1 + z * z) - z), "modal body " + m.body_name(beam.body) + " (" + std::to_string(n) +

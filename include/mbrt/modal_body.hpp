@@ -162,11 +162,13 @@ struct ModalLoad {
 // terms to its frame load (force world, torque body), reduced by the modes'
 // generalized force, and returns the modal momentum's rate. ab is the
 // frame's last acceleration (body axes), for the axial geometric stiffness;
-// g is gravity.
+// g is gravity; applied is the modes' generalized force of the loads at its
+// nodes (modal_point_force), whose frame parts load already holds.
 template <int N>
 inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w, const Vec3& ab,
                                 const Vec3& g, const Eigen::Matrix<double, N, 1>& q,
-                                const Eigen::Matrix<double, N, 1>& p, Wrench& load) noexcept {
+                                const Eigen::Matrix<double, N, 1>& p, const Eigen::Matrix<double, N, 1>& applied,
+                                Wrench& load) noexcept {
   using Modes = Eigen::Matrix<double, N, 1>;
   const Vec3 vb = R.transpose() * v, gb = R.transpose() * g;
   const Eigen::Matrix<double, N, 3> Sr_T = turn_coupling_transpose<N>(b, q);
@@ -179,7 +181,7 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
   // Modal: centrifugal, elastic, damping, geometric stiffness, gravity.
   const double axial = -(ab - gb).x();
   const typename ModalBody<N>::ModeMatrix kg = (w.y() * w.y() + w.z() * w.z()) * b.kg_spin + axial * b.kg_axial;
-  Modes fq = b.St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd) - kg * q;
+  Modes fq = applied + b.St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd) - kg * q;
   const double w2 = w.squaredNorm();
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
@@ -214,8 +216,8 @@ inline double modal_kinetic_energy(const ModalBody<N>& b, const Mat3& R, const V
          w.dot(modal_detail::vee_of(P)) + 0.5 * qd.squaredNorm();
 }
 
-// A point of the beam (its tip): undeformed place in body axes, and its
-// displacement and small rotation per modal coordinate.
+// A node of the beam: undeformed place in body axes, and its displacement
+// and small rotation per modal coordinate.
 template <int N>
 struct ModalPoint {
   Vec3 point;
@@ -242,6 +244,36 @@ inline void modal_point_velocity(const ModalBody<N>& b, const ModalPoint<N>& c, 
   Eigen::Map<Vec3> velocity(out), angular_velocity(out + 3);
   velocity = s.v + R * (s.w.cross(c.point + c.displacement * q) + c.displacement * qd);
   angular_velocity = s.w + c.rotation * qd;
+}
+
+// A force f (world) at node c: the frame's load (force world, torque body
+// about the frame's origin) gains it at the node's deformed place; returns
+// the modes' generalized force Psi^T R^T f, for modal_loads' applied.
+template <int N>
+inline Eigen::Matrix<double, N, 1> modal_point_force(const ModalPoint<N>& c, const Mat3& R,
+                                                     const Eigen::Matrix<double, N, 1>& q, const Vec3& f,
+                                                     Wrench& load) noexcept {
+  const Vec3 fb = R.transpose() * f;
+  load.f += f;
+  load.tau += (c.point + c.displacement * q).cross(fb);
+  return c.displacement.transpose() * fb;
+}
+
+// Node c as a force element sees it: its deformed place in body axes, and a
+// velocity of the frame that carries it there (the frame's, plus the node's
+// deformation rate R Psi qdot), so that the element's carried point is the
+// node's place and velocity.
+struct ModalPointMotion {
+  Vec3 point;
+  BodyVelocity velocity;
+};
+
+template <int N>
+inline ModalPointMotion modal_point_motion(const ModalBody<N>& b, const ModalPoint<N>& c, const BodyPose& pose,
+                                           const BodyVelocity& vel, const Eigen::Matrix<double, N, 1>& q,
+                                           const Eigen::Matrix<double, N, 1>& p) noexcept {
+  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, pose.R, vel.v, vel.w, q, p);
+  return {c.point + c.displacement * q, {vel.v + pose.R * (c.displacement * qd), vel.w}};
 }
 
 }  // namespace mbrt
