@@ -1,16 +1,22 @@
 // A modal body's momentum and angular momentum (about the origin), summed
 // point by point over the displaced beam (beam_field) plus the sections'
 // polar inertia about the axis: the references the conservation tests hold
-// the generated models to, independent of the step's invariants.
+// the generated models to, independent of the step's invariants; and the
+// run that measures how far a model strays from them.
 #pragma once
 
+#include <doctest/doctest.h>
+
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include <Eigen/Geometry>
 
 #include "beam_modes.hpp"
 #include "modal_body.hpp"
 #include "mbrt/body_state.hpp"
+#include "mbrt/step_status.hpp"
 
 namespace modal_momenta {
 
@@ -47,5 +53,29 @@ class ModalBeamMass {
   mbrt::codegen::ModalPlan plan_;
   mbrt::codegen::BeamField field_;
 };
+
+// The largest relative change of energy, momentum and angular momentum
+// over 10 s, momenta(s) giving {momentum, angular momentum} of the model's
+// bodies, and the largest modal coordinate of its first modal body.
+struct Conservation {
+  double energy, momentum, angular_momentum, largest_q;
+};
+
+template <class State, class Step, class EnergyOf, class MomentaOf>
+Conservation conservation_errors(State s, Step step, EnergyOf energy, MomentaOf momenta, double h) {
+  const auto [p0, h0] = momenta(s);
+  const double e0 = energy(s);
+  Conservation worst{0, 0, 0, 0};
+  const int steps = static_cast<int>(std::lround(10.0 / h));
+  for (int i = 0; i < steps; ++i) {
+    REQUIRE(step(s) == mbrt::StepStatus::ok);
+    const auto [p, hh] = momenta(s);
+    worst.energy = std::max(worst.energy, std::abs(energy(s) - e0) / e0);
+    worst.momentum = std::max(worst.momentum, (p - p0).norm() / p0.norm());
+    worst.angular_momentum = std::max(worst.angular_momentum, (hh - h0).norm() / h0.norm());
+    worst.largest_q = std::max(worst.largest_q, s.modal_q[0].cwiseAbs().maxCoeff());
+  }
+  return worst;
+}
 
 }  // namespace modal_momenta
