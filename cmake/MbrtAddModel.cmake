@@ -1,6 +1,6 @@
 # mbrt_add_model(<target> MODEL <model.yaml>
 #                [NAME <name>] [SCHEME <scheme>] [STEP <h>] [EULER_UPDATES <k>] [PROJECT_INITIAL] [LCM]
-#                [WARNINGS] [C_INTERFACE] [GEN_OPTIONS <mbrt gen options>...])
+#                [WARNINGS] [C_INTERFACE] [GEN_OPTIONS <mbrt gen options>...] [DATA <files>...])
 #
 # Generates the model's step with `mbrt gen` at build time (again whenever the
 # model file or the generator changes) and adds it as a static library
@@ -16,6 +16,8 @@
 # passes further `mbrt gen` options (e.g. --ali3p-projection cuadrado,
 # --no-specialize, or --can-fd for the CAN layout in CAN FD frames). WARNINGS
 # compiles the generated code with mbrt_enable_warnings(), as warnings only.
+# DATA lists files the model reads (a modal body's `file:`), so that a change
+# to them generates it again.
 #
 # mbrt_add_model_pch(<target>)
 #
@@ -83,7 +85,7 @@ function(mbrt_add_model_pch target)
 endfunction()
 
 function(mbrt_add_model target)
-  cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM;WARNINGS;C_INTERFACE" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS" ${ARGN})
+  cmake_parse_arguments(ARG "PROJECT_INITIAL;LCM;WARNINGS;C_INTERFACE" "MODEL;NAME;SCHEME;STEP;EULER_UPDATES" "GEN_OPTIONS;DATA" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "mbrt_add_model(${target}): MODEL <file.yaml> is required")
   endif()
@@ -132,7 +134,7 @@ function(mbrt_add_model target)
     OUTPUT ${outputs}
     COMMAND mbrt::mbrt_cli gen "${model}" -o "${dir}" ${options}
     ${lcm_gen}
-    DEPENDS "${model}" mbrt::mbrt_cli
+    DEPENDS "${model}" ${ARG_DATA} mbrt::mbrt_cli
     COMMENT "mbrt: generating ${name} from ${ARG_MODEL}"
     VERBATIM)
   set(sources ${outputs})

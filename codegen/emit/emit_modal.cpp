@@ -51,8 +51,7 @@ void Emitter::modal_constants(std::ostringstream& o) const {
 }
 
 std::string Emitter::modal_node_label(int i, int k) const {
-  const int elements = a_.modal[static_cast<size_t>(plan(i).modal)].elements;
-  return body(i).name + "@" + (k == 0 ? "root" : k == elements ? "tip" : std::to_string(k));
+  return body(i).name + "@" + a_.modal[static_cast<size_t>(plan(i).modal)].node_names[static_cast<size_t>(k)];
 }
 
 std::vector<int> Emitter::modal_nodes(int i) const {

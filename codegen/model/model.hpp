@@ -262,15 +262,41 @@ struct BeamElementSpec {
   BeamSection section;
 };
 
+// A modal body's structure read from a file (docs/flexible.md, "Modal data
+// from a file"): nodes with lumped mass in the file's axes, and either a
+// stiffness matrix and the nodes it is clamped at, or its modes.
+struct ModalNodeData {
+  std::string name;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // file axes and origin
+  double mass = 0.0;
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the node; with 6 coordinates
+};
+
+struct ModalStructure {
+  std::string file;     // as given, for messages
+  int coordinates = 6;  // per node: x, y, z, then small rotations about x, y, z when 6
+  std::vector<ModalNodeData> nodes;
+  std::vector<int> clamped;      // nodes the modes hold still; joints attach there
+  Eigen::MatrixXd stiffness;     // coordinates * nodes, square; empty when the modes are given
+  Eigen::VectorXd frequencies;   // rad/s, ascending, with
+  Eigen::MatrixXd shapes;        // coordinates * nodes x modes
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // the nodes' centre of mass: the frame's origin
+};
+
 // A flexible body as a modal body (docs/flexible.md): the body `body` is the
-// beam's frame (its undeformed centre and axes), with the beam's lowest
-// `modes` bending and axial modes clamped at its root (body point
-// (-length / 2, 0, 0)), from `elements` finite elements.
-struct ModalBeam {
+// frame (the undeformed body's centre of mass), carrying `modes` modes of
+// either a uniform beam clamped at its root (body point (-length / 2, 0, 0);
+// its lowest bending and axial modes from `elements` finite elements), or a
+// structure from a file.
+struct ModalSource {
   int body = kGround;
+  int modes = 0;
   double length = 0.0, EA = 0.0, GJ = 0.0, EIy = 0.0, EIz = 0.0, rho_A = 0.0, rho_J = 0.0;
-  double damping = 0.0;  // s: stiffness-proportional
-  int elements = 0, modes = 0;
+  double damping = 0.0;  // beam: s, stiffness-proportional
+  int elements = 0;
+  std::optional<ModalStructure> structure;  // instead of the beam
+  double damping_ratio = 0.0;               // structure: of critical, every mode
+  int nodes() const { return structure ? static_cast<int>(structure->nodes.size()) : elements + 1; }
 };
 
 struct Model {
@@ -283,7 +309,7 @@ struct Model {
   std::vector<Force> forces;
   std::vector<FlexibleBody> flexible;
   std::vector<BeamElementSpec> beam_elements;  // of the flexible bodies, in their order
-  std::vector<ModalBeam> modal;                // the modal bodies
+  std::vector<ModalSource> modal;              // the modal bodies
   std::vector<Driver> drivers;
   std::vector<Input> inputs;
   std::vector<Output> outputs;

@@ -33,6 +33,11 @@ const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "posit
                         "orientation", "velocity", "angular_velocity", "flexible"};
 const Keys kFlexibleBodyKeys = {"name", "flexible", "position", "orientation", "velocity", "angular_velocity"};
 const Keys kBeamKeys = {"length", "elements", "EA", "GA", "GJ", "EI", "rho_A", "rho_J", "damping", "modes"};
+// A modal body from a file (docs/flexible.md, "Modal data from a file").
+const Keys kModalFileBodyKeys = {"file", "modes", "damping_ratio"};
+const Keys kModalFileKeys = {"coordinates", "nodes", "clamped", "stiffness", "modes"};
+const Keys kModalFileNodeKeys = {"name", "position", "mass", "inertia"};
+const Keys kModalFileModeKeys = {"frequency", "shape"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
 const Keys kFunctionKeys = {"polynomial", "sine", "pieces"};
 const Keys kSineKeys = {"amplitude", "omega", "phase", "offset"};
@@ -418,13 +423,30 @@ int read_node_ref(const Value& v, const Model& model, const std::string& body, c
               (names.empty() ? std::string(" (the model has none)") : " (flexible bodies: " + join(names) + ")"));
 }
 
-// A modal body's node: NAME@root, NAME@tip or NAME@K (0 <= K <= elements),
-// and the body in `body`; -1 when `name` is not a modal body.
+// The modal body whose frame is body `body`; nullptr for others.
+const ModalSource* modal_source(const Model& model, int body) {
+  for (const ModalSource& m : model.modal) {
+    if (m.body == body) return &m;
+  }
+  return nullptr;
+}
+
+// A modal body's node: a beam's root, tip or K (0 <= K <= elements), a
+// structure's node by name or number (0 first); the body in `body`; -1 when
+// `name` is not a modal body.
 int read_modal_node(const Value& v, const Model& model, const std::string& name, const std::string& node, int& body) {
-  for (const ModalBeam& beam : model.modal) {
-    if (model.bodies[static_cast<size_t>(beam.body)].name != name) continue;
-    body = beam.body;
-    return node_number(v, "modal body", name, node, beam.elements);
+  for (const ModalSource& source : model.modal) {
+    if (model.bodies[static_cast<size_t>(source.body)].name != name) continue;
+    body = source.body;
+    if (!source.structure) return node_number(v, "modal body", name, node, source.elements);
+    const std::vector<ModalNodeData>& nodes = source.structure->nodes;
+    Keys names;
+    for (size_t k = 0; k < nodes.size(); ++k) {
+      if (nodes[k].name == node || std::to_string(k) == node) return static_cast<int>(k);
+      names.push_back(nodes[k].name);
+    }
+    fail(v, "unknown node '" + excerpt(node) + "' of modal body '" + name + "' (its nodes in " + source.structure->file +
+                ": " + join(names) + ", or 0 to " + std::to_string(nodes.size() - 1) + ")");
   }
   return -1;
 }
@@ -443,8 +465,10 @@ int read_body_ref(const Value& v, const Model& model, int* node = nullptr) {
     int body = kGround;
     const int k = read_modal_node(v, model, name, s.substr(at + 1), body);
     if (k >= 0 && !node) {
-      fail(v, "'" + name + "' is a modal body: name it, and this attaches at its root (only forces, spring_dampers and outputs "
-                  "take " + name + "@tip or " + name + "@K)");
+      const bool beam = !modal_source(model, body)->structure;
+      fail(v, "'" + name + "' is a modal body: name it, and this attaches " +
+                  (beam ? "at its root" : "at one of its clamped nodes' places") +
+                  " (only forces, spring_dampers and outputs take " + name + (beam ? "@tip or " + name + "@K)" : "@NODE)"));
     }
     if (k >= 0) {
       *node = k;
@@ -463,13 +487,12 @@ int read_body_ref(const Value& v, const Model& model, int* node = nullptr) {
 
 // Where node K of a modal body is at t = 0, world.
 Eigen::Vector3d modal_node_place(const Model& model, int body, int k) {
-  for (const ModalBeam& beam : model.modal) {
-    if (beam.body != body) continue;
-    const Body& b = model.bodies[static_cast<size_t>(body)];
-    const double x = beam.length * (static_cast<double>(k) / beam.elements - 0.5);  // from the centre, along the frame's x
-    return b.position + mbrt::rotation_matrix(b.orientation) * Eigen::Vector3d(x, 0, 0);
-  }
-  return Eigen::Vector3d::Zero();
+  const ModalSource& source = *modal_source(model, body);
+  const Body& b = model.bodies[static_cast<size_t>(body)];
+  const Eigen::Vector3d from_centre =
+      source.structure ? Eigen::Vector3d(source.structure->nodes[static_cast<size_t>(k)].position - source.structure->centre)
+                       : Eigen::Vector3d(source.length * (static_cast<double>(k) / source.elements - 0.5), 0, 0);
+  return b.position + mbrt::rotation_matrix(b.orientation) * from_centre;
 }
 
 // An optional list (joints, forces): an empty value means none.
@@ -520,6 +543,148 @@ std::pair<double, double> read_pair(const Value& v) {
   return {read_positive(element(v, 0)), read_positive(element(v, 1))};
 }
 
+// A modal body's structure from its data file (docs/flexible.md, "Modal data
+// from a file"); `v` is the model's `file:` entry, a path from the model
+// file's directory. Messages name the data file, its line and key.
+ModalStructure read_modal_structure(const Value& v, const std::string& model_file) {
+  const std::string given = read_string(v, "the modal data file's path");
+  std::filesystem::path path(given);
+  if (path.is_relative()) path = std::filesystem::path(model_file).parent_path() / path;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail(v, "cannot open the modal data file '" + path.string() + "' (not a file)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(v, "cannot open the modal data file '" + path.string() + "' (" + std::strerror(errno) + ")");
+  YAML::Node root;
+  try {
+    root = YAML::Load(in);
+  } catch (const YAML::Exception& e) {
+    throw ModelError(location(path.string(), e.mark), "", "invalid YAML: " + e.msg);
+  }
+  ModalStructure out;
+  out.file = path.string();
+  const Value top{root, "", {out.file, 1, 1}};
+  const Section s(top, kModalFileKeys);
+  if (auto c = s.find("coordinates")) {
+    out.coordinates = read_integer_at_least(*c, 3);
+    if (out.coordinates != 3 && out.coordinates != 6) fail_expected(*c, "3 (translations) or 6 (and small rotations)");
+  }
+  const int c = out.coordinates;
+  const Value nodes = s.get("nodes");
+  if (!nodes.node.IsSequence() || nodes.node.size() < 2) fail_expected(nodes, "a list of at least 2 nodes");
+  if (c * nodes.node.size() > 1200) fail(nodes, "at most 1,200 coordinates (" + std::to_string(1200 / c) + " nodes)");
+  std::map<std::string, int> seen;
+  for (std::size_t i = 0; i < nodes.node.size(); ++i) {
+    const Section n(element(nodes, i), kModalFileNodeKeys);
+    ModalNodeData d;
+    const Value name = n.get("name");
+    d.name = read_identifier(name);
+    check_unique(name, d.name, "node", seen);
+    d.position = read_vector3(n.get("position"));
+    d.mass = read_non_negative(n.get("mass"));
+    if (auto inertia = n.find("inertia")) {
+      if (c == 3) fail(*inertia, "a node's inertia turns with its small rotations: give coordinates: 6");
+      d.inertia = read_inertia(*inertia);
+    }
+    out.nodes.push_back(d);
+  }
+  double mass = 0.0;
+  for (const ModalNodeData& d : out.nodes) mass += d.mass, out.centre += d.mass * d.position;
+  if (!(mass > 0.0)) fail(nodes, "the nodes carry no mass");
+  out.centre /= mass;
+  if (auto clamped = s.find("clamped")) {
+    if (!clamped->node.IsSequence()) fail_expected(*clamped, "a list of node names");
+    for (std::size_t i = 0; i < clamped->node.size(); ++i) {
+      const Value name = element(*clamped, i);
+      const std::string n = read_string(name, "a node name");
+      const auto it = seen.find(n);
+      if (it == seen.end()) fail(name, "unknown node '" + excerpt(n) + "'");
+      const int k = static_cast<int>(std::find_if(out.nodes.begin(), out.nodes.end(), [&](const ModalNodeData& d) { return d.name == n; }) -
+                                     out.nodes.begin());
+      if (std::find(out.clamped.begin(), out.clamped.end(), k) != out.clamped.end()) fail(name, "node '" + n + "' is listed twice");
+      out.clamped.push_back(k);
+    }
+  }
+  const auto stiffness = s.find("stiffness");
+  const auto modes = s.find("modes");
+  if (stiffness.has_value() == modes.has_value()) {
+    fail(top, "give either stiffness (its modes are computed) or modes (frequencies and shapes), not " +
+                  std::string(stiffness ? "both" : "neither"));
+  }
+  const std::size_t n = static_cast<std::size_t>(c) * out.nodes.size();
+  if (stiffness) {
+    const std::string row_size = "a row of " + std::to_string(n) + " numbers (" + std::to_string(c) + " per node)";
+    if (!stiffness->node.IsSequence() || stiffness->node.size() != n) fail_expected(*stiffness, std::to_string(n) + " rows");
+    out.stiffness.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    for (std::size_t i = 0; i < n; ++i) out.stiffness.row(static_cast<Eigen::Index>(i)) = read_numbers(element(*stiffness, i), {n}, row_size).transpose();
+    const double largest = out.stiffness.cwiseAbs().maxCoeff();
+    Eigen::Index i = 0, j = 0;
+    if ((out.stiffness - out.stiffness.transpose()).cwiseAbs().maxCoeff(&i, &j) > 1e-9 * largest) {
+      fail(*stiffness, "not symmetric: row " + std::to_string(i) + ", column " + std::to_string(j) + " is " +
+                           format_number(out.stiffness(i, j)) + ", row " + std::to_string(j) + ", column " + std::to_string(i) +
+                           " is " + format_number(out.stiffness(j, i)));
+    }
+    return out;
+  }
+  if (!modes->node.IsSequence() || modes->node.size() < 1) fail_expected(*modes, "a list of modes");
+  out.frequencies.resize(static_cast<Eigen::Index>(modes->node.size()));
+  out.shapes.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(modes->node.size()));
+  for (std::size_t m = 0; m < modes->node.size(); ++m) {
+    const Section mode(element(*modes, m), kModalFileModeKeys);
+    const Value frequency = mode.get("frequency");
+    const auto k = static_cast<Eigen::Index>(m);
+    out.frequencies[k] = 2 * M_PI * read_positive(frequency);  // Hz in the file
+    if (m > 0 && out.frequencies[k] < out.frequencies[k - 1]) fail_expected(frequency, "the modes in ascending frequency");
+    const Value shape = mode.get("shape");
+    if (!shape.node.IsSequence() || shape.node.size() != out.nodes.size()) {
+      fail_expected(shape, std::to_string(out.nodes.size()) + " entries, one per node");
+    }
+    for (std::size_t node = 0; node < out.nodes.size(); ++node) {
+      out.shapes.block(static_cast<Eigen::Index>(c * node), k, c, 1) =
+          read_numbers(element(shape, node), {static_cast<std::size_t>(c)}, "a list of " + std::to_string(c) + " numbers");
+    }
+  }
+  return out;
+}
+
+// A modal body from a file: one body, its frame at the nodes' centre of
+// mass, `position` and `orientation` placing the file's origin and axes.
+void parse_modal_file_body(const std::string& name, const Value& item, const Section& s, const Value& data, Model& model) {
+  const Section f(data, kModalFileBodyKeys);
+  ModalSource source;
+  source.body = static_cast<int>(model.bodies.size());
+  source.structure = read_modal_structure(f.get("file"), model.file);
+  const ModalStructure& st = *source.structure;
+  source.modes = read_integer_at_least(f.get("modes"), 1);
+  if (source.modes > 6) fail_expected(f.get("modes"), "at most 6 modes");
+  if (auto z = f.find("damping_ratio")) source.damping_ratio = read_non_negative(*z);
+  Body frame;
+  frame.name = name;
+  frame.where = item.where;
+  frame.inertia.setZero();
+  for (const ModalNodeData& d : st.nodes) {
+    const Eigen::Vector3d x = d.position - st.centre;
+    frame.mass += d.mass;
+    frame.inertia += d.mass * (x.squaredNorm() * Eigen::Matrix3d::Identity() - x * x.transpose()) + d.inertia;
+  }
+  if (!(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(frame.inertia, Eigen::EigenvaluesOnly).eigenvalues()(0) > 1e-12 * frame.inertia.trace())) {
+    fail(f.get("file"), "the nodes' mass in " + st.file + " has no inertia about some axis (its nodes lie on one line); "
+                        "give nodes inertia (coordinates: 6) or mass off that line");
+  }
+  Eigen::Vector4d orientation{1.0, 0.0, 0.0, 0.0};
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+  if (auto v = s.find("orientation")) orientation = read_euler_parameters(*v);
+  if (auto v = s.find("position")) origin = read_vector3(*v);
+  if (auto v = s.find("velocity")) velocity = read_vector3(*v);
+  if (auto v = s.find("angular_velocity")) w = read_vector3(*v);
+  const Eigen::Vector3d arm = mbrt::rotation_matrix(orientation) * st.centre;
+  frame.orientation = orientation;
+  frame.position = origin + arm;
+  frame.velocity = velocity + (mbrt::rotation_matrix(orientation) * w).cross(arm);
+  frame.angular_velocity = w;
+  model.bodies.push_back(frame);
+  model.modal.push_back(std::move(source));
+}
+
 // A body with `flexible:` beam data: its nodes become bodies NAME_n0 ...
 // NAME_nN with the beam's mass lumped on them, each carrying its slice's
 // inertia, and its elements join neighbouring nodes (docs/flexible.md).
@@ -529,6 +694,10 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
   const Value name = s.get("name");
   f.name = read_identifier(name);
   check_unique(name, f.name, "body", names_seen);
+  if (const Value data = s.get("flexible"); data.node.IsMap() && data.node["file"]) {
+    parse_modal_file_body(f.name, item, s, data, model);
+    return;
+  }
   const Section b(s.get("flexible"), kBeamKeys);
   const double length = read_positive(b.get("length"));
   f.elements = read_integer_at_least(b.get("elements"), 1);
@@ -553,8 +722,11 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
   if (auto modes = b.find("modes")) {
     // A modal body: one body, the beam's frame at its centre.
     if (auto v = b.find("GA")) fail(*v, "GA is a nodal beam's (a modal body's modes are Euler-Bernoulli); remove it or drop modes");
-    ModalBeam beam{static_cast<int>(model.bodies.size()), length, section.EA, section.GJ, section.EIy, section.EIz,
-                   rho_A, rho_J, section.damping, f.elements, read_integer_at_least(*modes, 1)};
+    ModalSource beam;
+    beam.body = static_cast<int>(model.bodies.size());
+    beam.modes = read_integer_at_least(*modes, 1);
+    beam.length = length, beam.EA = section.EA, beam.GJ = section.GJ, beam.EIy = section.EIy, beam.EIz = section.EIz;
+    beam.rho_A = rho_A, beam.rho_J = rho_J, beam.damping = section.damping, beam.elements = f.elements;
     if (beam.modes > 6) fail_expected(*modes, "at most 6 modes");
     // Six modes converge long before; the modes' eigenproblem grows as the cube.
     if (beam.elements > 60) fail_expected(b.get("elements"), "at most 60 elements for a modal body");

@@ -522,7 +522,7 @@ static void check_absolute_friction(const Model& model) {
 static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
   std::vector<ModalPlan> plans;
   for (size_t i = 0; i < model.modal.size(); ++i) {
-    const ModalBeam& beam = model.modal[i];
+    const ModalSource& beam = model.modal[i];
     const Body& body = model.bodies[static_cast<size_t>(beam.body)];
     const std::string key = "bodies." + body.name + ".flexible.modes";
     const mbrt::Scheme scheme = model.solver.scheme;
@@ -539,8 +539,7 @@ static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
     if (frame.tunable_mass) throw ModelError(body.where, key, "a modal body's mass comes from its beam; it cannot be tunable");
     ModalPlan plan;
     try {
-      plan = plan_modal_body({beam.length, beam.EA, beam.GJ, beam.EIy, beam.EIz, beam.rho_A, beam.rho_J, beam.elements},
-                             beam.modes, beam.damping);
+      plan = plan_modal(beam);
     } catch (const std::exception& e) {
       throw ModelError(body.where, key, e.what());
     }
@@ -552,19 +551,33 @@ static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
     frame.loaded = true;
     frame.isotropic = false;
     a.velocity_dependent_forces = true;  // its centrifugal, Coriolis and gyroscopic terms
-    // Attachments: joints at the root, where the modes leave the frame's
-    // motion alone; forces there or at the node they name.
-    const double tolerance = 1e-9 * beam.length;
+    // Attachments: joints where the modes are clamped (a beam's root), which
+    // the modes leave moving with the frame; forces there or at the node they name.
+    double size = 0.0;
+    for (const Eigen::Vector3d& x : plan.node_points) size = std::max(size, x.norm());
+    const double tolerance = 1e-9 * size;
     const auto place = [&](const Eigen::Vector3d& point) {
       const Eigen::Vector3d world = body.position + mbrt::rotation_matrix(body.orientation) * point;
       return "(" + std::to_string(world.x()) + ", " + std::to_string(world.y()) + ", " + std::to_string(world.z()) + " at t = 0)";
     };
     const auto at_root = [&](const Eigen::Vector3d& point, const SourceLocation& where, const std::string& what) {
-      if ((point - plan.root).norm() > tolerance) {
-        throw ModelError(where, what,
-                         "attaches to modal body '" + body.name + "' away from its root; put it at the root " + place(plan.root) +
-                             ", name a node (" + body.name + "@K) for a force, or use a nodal beam (drop modes)");
+      std::string mounts;
+      for (const int k : plan.clamped) {
+        const Eigen::Vector3d& mount = plan.node_points[static_cast<size_t>(k)];
+        if ((point - mount).norm() <= tolerance) return;
+        mounts += (mounts.empty() ? "" : ", ") + body.name + "@" + plan.node_names[static_cast<size_t>(k)] + " " + place(mount);
       }
+      if (!beam.structure) {
+        throw ModelError(where, what,
+                         "attaches to modal body '" + body.name + "' away from its root; put it at the root " +
+                             place(plan.node_points[0]) + ", name a node (" + body.name +
+                             "@K) for a force, or use a nodal beam (drop modes)");
+      }
+      throw ModelError(where, what,
+                       "attaches to modal body '" + body.name + "' away from where its modes are clamped" +
+                           (mounts.empty() ? std::string(" (its file clamps none: only forces and outputs, at nodes, attach to it)")
+                                           : "; put it at " + mounts) +
+                           ", or name a node (" + body.name + "@NODE) for a force");
     };
     const auto at_node = [&](int node, const Eigen::Vector3d& point, const SourceLocation& where, const std::string& what) {
       if (node < 0) return at_root(point, where, what);

@@ -18,6 +18,83 @@ void zero_round_off(Matrix& m, double scale) {
   m = m.unaryExpr([&](double x) { return std::abs(x) <= 1e-12 * scale ? 0.0 : x; });
 }
 
+namespace {
+
+// A point of the body's mass: `mass` at `place` (body axes, from the frame's
+// origin), moving by `displacement` q (3 x modes).
+struct MassPoint {
+  double mass;
+  Eigen::Vector3d place;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> displacement;
+};
+
+// The modes' coupling with the frame and the inertia invariants (Shabana
+// 2005, Dynamics of Multibody Systems, ch. 5) over the body's mass points,
+// plus `turning`: the modes' angular momentum of the points' own inertia
+// (sum of I_k times the node's small rotation, 3 x modes). Then the reduced
+// inverse mass and round-off zeroed; p.m, p.J and the geometric stiffness
+// are set before.
+void sum_invariants(ModalPlan& p, const std::vector<MassPoint>& points, const Eigen::Matrix<double, 3, Eigen::Dynamic>& turning) {
+  const int modes = p.modes;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> St = Eigen::MatrixXd::Zero(3, modes), Sr = turning;
+  for (auto& e : p.E) e = Eigen::MatrixXd::Zero(modes, modes);
+  for (auto& g : p.G) g = Eigen::RowVectorXd::Zero(modes);
+  for (const MassPoint& point : points) {
+    const double dm = point.mass;
+    const Eigen::Matrix<double, 3, Eigen::Dynamic>& u = point.displacement;
+    St += dm * u;
+    for (int m = 0; m < modes; ++m) Sr.col(m) += dm * point.place.cross(u.col(m));
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        p.E[static_cast<size_t>(3 * a + b)] += dm * u.row(a).transpose() * u.row(b);
+        p.G[static_cast<size_t>(3 * a + b)] += dm * point.place[a] * u.row(b);
+      }
+    }
+  }
+  p.St_T = St.transpose();
+  p.Sr_T = Sr.transpose();
+  // A unit modal mass couples at most sqrt(m) and sqrt(trace J): free modes'
+  // round-off is small against that, not against itself.
+  const double coupling = std::max({p.St_T.cwiseAbs().maxCoeff(), p.Sr_T.cwiseAbs().maxCoeff(), std::sqrt(p.m), std::sqrt(p.J.trace())});
+  zero_round_off(p.St_T, coupling), zero_round_off(p.Sr_T, coupling);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> S(6, modes);
+  S << p.St_T.transpose(), p.Sr_T.transpose();
+  Eigen::Matrix<double, 6, 6> rigid = Eigen::Matrix<double, 6, 6>::Zero();
+  rigid.topLeftCorner<3, 3>() = p.m * Eigen::Matrix3d::Identity();
+  rigid.bottomRightCorner<3, 3>() = p.J;
+  p.reduced_inverse = (rigid - S * S.transpose()).inverse();
+  const auto largest = [](const auto& list) {
+    double x = 0;
+    for (const auto& m : list) x = std::max(x, m.cwiseAbs().maxCoeff());
+    return x;
+  };
+  zero_round_off(p.kg_spin, p.kg_spin.cwiseAbs().maxCoeff()), zero_round_off(p.kg_axial, p.kg_axial.cwiseAbs().maxCoeff());
+  zero_round_off(p.reduced_inverse, p.reduced_inverse.cwiseAbs().maxCoeff());
+  const double e = largest(p.E), g = largest(p.G);
+  for (auto& m : p.E) zero_round_off(m, e);
+  for (auto& m : p.G) zero_round_off(m, g);
+}
+
+// A mode's sign is the solver's choice, which rounding can flip between
+// builds; its largest entry positive makes the generated constants the same.
+void fix_signs(Eigen::MatrixXd& shapes) {
+  for (Eigen::Index k = 0; k < shapes.cols(); ++k) {
+    Eigen::Index largest = 0;
+    shapes.col(k).cwiseAbs().maxCoeff(&largest);
+    if (shapes(largest, k) < 0) shapes.col(k) *= -1.0;
+  }
+}
+
+Eigen::MatrixXd restrict(const Eigen::MatrixXd& A, const std::vector<int>& rows, const std::vector<int>& cols) {
+  Eigen::MatrixXd R(rows.size(), cols.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    for (size_t j = 0; j < cols.size(); ++j) R(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = A(rows[i], cols[j]);
+  }
+  return R;
+}
+
+}  // namespace
+
 ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping) {
   const int available = kNodeCoordinates * beam.elements;
   // Enough candidates that the lowest `modes` bending and axial ones are among
@@ -52,36 +129,11 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   const double L = beam.length, centre = L / 2;
   p.m = beam.rho_A * L;
   p.J = Eigen::Vector3d(beam.rho_J * L, p.m * L * L / 12, p.m * L * L / 12).asDiagonal();
-  p.root = Eigen::Vector3d(-centre, 0, 0);
-  p.length = L;
-  p.elements = beam.elements;
-
-  // Invariants over the beam's mass, positions rho0 = (x - L/2, 0, 0).
-  const BeamField f = beam_field(beam, shapes);
-  Eigen::Matrix<double, 3, Eigen::Dynamic> St = Eigen::MatrixXd::Zero(3, modes), Sr = St;
-  for (auto& e : p.E) e = Eigen::MatrixXd::Zero(modes, modes);
-  for (auto& g : p.G) g = Eigen::RowVectorXd::Zero(modes);
-  for (Eigen::Index k = 0; k < f.x.size(); ++k) {
-    const double dm = f.mass[k];
-    const Eigen::Vector3d rho0(f.x[k] - centre, 0, 0);
-    const Eigen::Matrix<double, 3, Eigen::Dynamic>& u = f.displacement[static_cast<size_t>(k)];
-    St += dm * u;
-    for (int m = 0; m < modes; ++m) Sr.col(m) += dm * rho0.cross(u.col(m));
-    for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) {
-        p.E[static_cast<size_t>(3 * a + b)] += dm * u.row(a).transpose() * u.row(b);
-        p.G[static_cast<size_t>(3 * a + b)] += dm * rho0[a] * u.row(b);
-      }
-    }
+  for (int k = 0; k <= beam.elements; ++k) {
+    p.node_names.push_back(k == 0 ? "root" : k == beam.elements ? "tip" : std::to_string(k));
+    p.node_points.emplace_back(L * (static_cast<double>(k) / beam.elements - 0.5), 0, 0);
   }
-  p.St_T = St.transpose();
-  p.Sr_T = Sr.transpose();
-  Eigen::Matrix<double, 6, Eigen::Dynamic> S(6, modes);
-  S << St, Sr;
-  Eigen::Matrix<double, 6, 6> rigid = Eigen::Matrix<double, 6, 6>::Zero();
-  rigid.topLeftCorner<3, 3>() = p.m * Eigen::Matrix3d::Identity();
-  rigid.bottomRightCorner<3, 3>() = p.J;
-  p.reduced_inverse = (rigid - S * S.transpose()).inverse();
+  p.clamped = {0};
 
   // Geometric stiffness: the axial force rho_A ((L^2 - x^2) / 2 - centre (L - x))
   // per unit (w_y^2 + w_z^2) about the centre, rho_A (L - x) per unit axial
@@ -92,24 +144,146 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   };
   p.kg_spin = projected(-centre);
   p.kg_axial = projected(1.0) - projected(0.0);
-  const auto largest = [](const auto& list) {
-    double x = 0;
-    for (const auto& m : list) x = std::max(x, m.cwiseAbs().maxCoeff());
-    return x;
-  };
-  const double coupling = std::max(p.St_T.cwiseAbs().maxCoeff(), p.Sr_T.cwiseAbs().maxCoeff());
-  zero_round_off(p.St_T, coupling), zero_round_off(p.Sr_T, coupling);
-  zero_round_off(p.kg_spin, p.kg_spin.cwiseAbs().maxCoeff()), zero_round_off(p.kg_axial, p.kg_axial.cwiseAbs().maxCoeff());
-  zero_round_off(p.reduced_inverse, p.reduced_inverse.cwiseAbs().maxCoeff());
-  const double e = largest(p.E), g = largest(p.G);
-  for (auto& m : p.E) zero_round_off(m, e);
-  for (auto& m : p.G) zero_round_off(m, g);
+
+  // The invariants over the beam's mass, positions rho0 = (x - L/2, 0, 0).
+  const BeamField f = beam_field(beam, shapes);
+  std::vector<MassPoint> points;
+  for (Eigen::Index k = 0; k < f.x.size(); ++k) points.push_back({f.mass[k], {f.x[k] - centre, 0, 0}, f.displacement[static_cast<size_t>(k)]});
+  sum_invariants(p, points, Eigen::MatrixXd::Zero(3, modes));
   return p;
+}
+
+ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double damping_ratio) {
+  const int c = s.coordinates, nodes = static_cast<int>(s.nodes.size()), n = c * nodes;
+  const auto fail = [&](const std::string& what) { throw std::invalid_argument(s.file + ": " + what); };
+  const auto coordinate = [&](int i) {
+    static const char* names[] = {"x", "y", "z", "rx", "ry", "rz"};
+    return "node '" + s.nodes[static_cast<size_t>(i / c)].name + "' " + names[i % c];
+  };
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < nodes; ++k) {
+    M.block(c * k, c * k, 3, 3).diagonal().setConstant(s.nodes[static_cast<size_t>(k)].mass);
+    if (c == 6) M.block(c * k + 3, c * k + 3, 3, 3) = s.nodes[static_cast<size_t>(k)].inertia;
+  }
+  const auto clamped = [&](int node) { return std::find(s.clamped.begin(), s.clamped.end(), node) != s.clamped.end(); };
+  Eigen::MatrixXd shapes = Eigen::MatrixXd::Zero(n, modes);
+  Eigen::VectorXd omega(modes);
+  if (s.stiffness.size() > 0) {
+    std::vector<int> with_mass, without;  // the free coordinates
+    for (int i = 0; i < n; ++i) {
+      if (!clamped(i / c)) (M(i, i) > 0 ? with_mass : without).push_back(i);
+    }
+    // Coordinates without mass follow the others statically: u_b = T u_a.
+    Eigen::MatrixXd T = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(without.size()), static_cast<Eigen::Index>(with_mass.size()));
+    Eigen::MatrixXd K = restrict(s.stiffness, with_mass, with_mass);
+    if (!without.empty()) {
+      const Eigen::LDLT<Eigen::MatrixXd> own(restrict(s.stiffness, without, without));
+      const double scale = s.stiffness.cwiseAbs().maxCoeff();
+      if (own.info() != Eigen::Success || !(own.vectorD().minCoeff() > 1e-12 * scale)) {
+        fail("the coordinates without mass (" + coordinate(without.front()) + (without.size() > 1 ? ", ..." : "") +
+             ") need stiffness of their own; give their nodes mass or inertia, or check the stiffness");
+      }
+      const Eigen::MatrixXd K_ba = restrict(s.stiffness, without, with_mass);
+      T = -own.solve(K_ba);
+      K += K_ba.transpose() * T;
+    }
+    const int rigid = s.clamped.empty() ? 6 : 0;
+    // A free structure must not strain when it moves as a rigid body.
+    for (int d = 0; rigid > 0 && d < 6; ++d) {
+      Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
+      for (int k = 0; k < nodes; ++k) {
+        const Eigen::Vector3d axis = Eigen::Vector3d::Unit(d % 3);
+        motion.segment<3>(c * k) = d < 3 ? axis : Eigen::Vector3d(axis.cross(s.nodes[static_cast<size_t>(k)].position - s.centre));
+        if (c == 6 && d >= 3) motion.segment<3>(c * k + 3) = axis;
+      }
+      if ((s.stiffness * motion).norm() > 1e-8 * s.stiffness.cwiseAbs().maxCoeff() * motion.norm()) {
+        fail(std::string("without clamped nodes the structure must move freely as a rigid body, but a rigid ") +
+             (d < 3 ? "move along " : "turn about ") + "xyz"[d % 3] + " strains it: check the stiffness, or clamp nodes (clamped: [...])");
+      }
+    }
+    if (static_cast<int>(with_mass.size()) < rigid + modes) {
+      fail(std::to_string(modes) + " modes asked for, but its " + std::to_string(with_mass.size()) + " free coordinates with mass give " +
+           std::to_string(static_cast<int>(with_mass.size()) - rigid));
+    }
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, restrict(M, with_mass, with_mass));
+    if (eig.info() != Eigen::Success) fail("the modes' eigenproblem failed; check the stiffness and the nodes' inertia");
+    const Eigen::VectorXd& l = eig.eigenvalues();
+    const double scale = l.cwiseAbs().maxCoeff(), zero = 1e-8 * scale;
+    const auto rate = [&](int k) { return std::to_string(std::sqrt(std::max(0.0, l[k]))) + " rad/s"; };
+    if (l[0] < -zero) fail("the stiffness is not positive semi-definite (an eigenvalue " + std::to_string(l[0]) + ")");
+    if (rigid > 0 && (l[5] > zero || l[6] <= zero)) {
+      fail("without clamped nodes the structure should move freely in exactly 6 rigid-body modes (zero frequencies); its 6th and 7th "
+           "lowest frequencies are " + rate(5) + " and " + rate(6) + ": check the stiffness, or clamp nodes (clamped: [...])");
+    }
+    if (rigid == 0 && l[0] <= zero) fail("the clamped structure still moves freely (a zero frequency); clamp more nodes or check the stiffness");
+    for (int k = 0; k < modes; ++k) {
+      omega[k] = std::sqrt(l[rigid + k]);
+      const Eigen::VectorXd v = eig.eigenvectors().col(rigid + k), follow = T * v;
+      for (size_t i = 0; i < with_mass.size(); ++i) shapes(with_mass[i], k) = v[static_cast<Eigen::Index>(i)];
+      for (size_t i = 0; i < without.size(); ++i) shapes(without[i], k) = follow[static_cast<Eigen::Index>(i)];
+    }
+  } else {
+    if (s.frequencies.size() < modes) {
+      fail("it gives " + std::to_string(s.frequencies.size()) + " modes, the model keeps " + std::to_string(modes));
+    }
+    omega = s.frequencies.head(modes);
+    shapes = s.shapes.leftCols(modes);
+    const double largest = shapes.cwiseAbs().maxCoeff();
+    for (int k = 0; k < modes; ++k) {
+      for (const int node : s.clamped) {
+        if (shapes.block(c * node, k, c, 1).cwiseAbs().maxCoeff() > 1e-9 * largest) {
+          fail("mode " + std::to_string(k + 1) + " moves clamped node '" + s.nodes[static_cast<size_t>(node)].name + "'");
+        }
+      }
+      const double modal_mass = shapes.col(k).dot(M * shapes.col(k));
+      if (!(modal_mass > 0)) fail("mode " + std::to_string(k + 1) + " moves no mass");
+      shapes.col(k) /= std::sqrt(modal_mass);
+      for (int j = 0; j < k; ++j) {
+        const double product = shapes.col(j).dot(M * shapes.col(k));
+        if (std::abs(product) > 1e-3) {
+          fail("modes " + std::to_string(j + 1) + " and " + std::to_string(k + 1) + " are not orthogonal in the nodes' mass (" +
+               std::to_string(product) + " of a unit modal mass, at most 0.001): the shapes and the masses do not belong together");
+        }
+      }
+    }
+  }
+  fix_signs(shapes);
+
+  ModalPlan p;
+  p.modes = modes;
+  p.omega = omega;
+  p.damping = 2 * damping_ratio * omega;
+  p.shapes = Eigen::MatrixXd::Zero(kNodeCoordinates * nodes, modes);
+  for (int k = 0; k < nodes; ++k) p.shapes.middleRows(kNodeCoordinates * k, c) = shapes.middleRows(c * k, c);
+  p.clamped = s.clamped;
+  p.m = 0;
+  p.J.setZero();
+  std::vector<MassPoint> points;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> turning = Eigen::MatrixXd::Zero(3, modes);
+  for (int k = 0; k < nodes; ++k) {
+    const ModalNodeData& d = s.nodes[static_cast<size_t>(k)];
+    const Eigen::Vector3d x = d.position - s.centre;
+    p.node_names.push_back(d.name);
+    p.node_points.push_back(x);
+    p.m += d.mass;
+    p.J += d.mass * (x.squaredNorm() * Eigen::Matrix3d::Identity() - x * x.transpose()) + d.inertia;
+    points.push_back({d.mass, x, p.shapes.middleRows(kNodeCoordinates * k, 3)});
+    turning += d.inertia * p.shapes.middleRows(kNodeCoordinates * k + 3, 3);
+  }
+  p.kg_spin = p.kg_axial = Eigen::MatrixXd::Zero(modes, modes);
+  sum_invariants(p, points, turning);
+  return p;
+}
+
+ModalPlan plan_modal(const ModalSource& source) {
+  if (source.structure) return plan_modal_structure(*source.structure, source.modes, source.damping_ratio);
+  return plan_modal_body({source.length, source.EA, source.GJ, source.EIy, source.EIz, source.rho_A, source.rho_J, source.elements},
+                         source.modes, source.damping);
 }
 
 ModalNode modal_node(const ModalPlan& p, int k) {
   ModalNode node;
-  node.point = Eigen::Vector3d(p.length * (static_cast<double>(k) / p.elements - 0.5), 0, 0);
+  node.point = p.node_points[static_cast<size_t>(k)];
   node.displacement = p.shapes.block(kNodeCoordinates * k, 0, 3, p.modes);
   node.rotation = p.shapes.block(kNodeCoordinates * k + 3, 0, 3, p.modes);
   const double largest = std::max(node.displacement.cwiseAbs().maxCoeff(), node.rotation.cwiseAbs().maxCoeff());

@@ -1,14 +1,19 @@
-// A modal flexible body's constants (docs/flexible.md): the lowest bending
-// and axial modes of its beam clamped at the root, and the inertia
-// invariants the step's kernel (include/mbrt/modal_body.hpp) takes,
-// integrated over the beam's finite elements at generation time.
+// A modal flexible body's constants (docs/flexible.md): its modes (the
+// lowest bending and axial modes of a beam clamped at its root, or those of
+// a structure from a file), and the inertia invariants the step's kernel
+// (include/mbrt/modal_body.hpp) takes, summed over the body's mass at
+// generation time.
 #pragma once
 
 #include <array>
 
 #include <Eigen/Core>
 
+#include <string>
+#include <vector>
+
 #include "beam_modes.hpp"
+#include "model.hpp"
 
 namespace mbrt::codegen {
 
@@ -24,14 +29,18 @@ struct ModalPlan {
   Eigen::MatrixXd kg_spin, kg_axial;        // modes x modes
   std::array<Eigen::MatrixXd, 9> E;         // modes x modes
   std::array<Eigen::RowVectorXd, 9> G;      // 1 x modes
-  Eigen::Vector3d root;                     // body axes, undeformed
-  double length = 0.0;
-  int elements = 0;
-  Eigen::MatrixXd shapes;  // the kept modes over the beam's coordinates (beam_modes.hpp)
+  // The nodes: their names (a beam's root, 1, ..., tip), undeformed places
+  // (body axes, from the frame's origin), and those the modes are clamped at.
+  std::vector<std::string> node_names;
+  std::vector<Eigen::Vector3d> node_points;
+  std::vector<int> clamped;
+  // The kept modes over the nodes' coordinates, 6 a node (x, y, z, then
+  // small rotations; zero where a structure has 3 a node).
+  Eigen::MatrixXd shapes;
 };
 
-// Node K of a modal body (0 root .. elements tip): its undeformed place in
-// body axes, and its displacement and small rotation per modal coordinate.
+// Node K of a modal body: its undeformed place in body axes, and its
+// displacement and small rotation per modal coordinate.
 struct ModalNode {
   Eigen::Vector3d point;
   Eigen::MatrixXd displacement, rotation;  // 3 x modes
@@ -44,5 +53,15 @@ ModalNode modal_node(const ModalPlan& p, int k);
 // invariants); `damping` is stiffness-proportional (s). Throws
 // std::invalid_argument where the elements give fewer bending and axial modes.
 ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping);
+
+// A structure's modes: computed from its stiffness (the clamped nodes held;
+// none: the 6 rigid-body modes dropped; coordinates without mass condensed
+// out, Guyan 1965), or as the file gives them, scaled to unit modal mass in
+// the nodes' lumped mass. Damping: `damping_ratio` of critical. No geometric
+// stiffness. Throws std::invalid_argument naming the file and what is wrong.
+ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double damping_ratio);
+
+// Either, as the model gives it (the frame body not set).
+ModalPlan plan_modal(const ModalSource& source);
 
 }  // namespace mbrt::codegen

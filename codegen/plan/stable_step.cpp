@@ -232,9 +232,8 @@ StableStep estimate_stable_step(const Model& m) {
   // are clamped to the frame, but the frame moves with them: with the frame
   // free (what the body's joints can only lower) they are stiffer, by the
   // mass the frame takes, M0 = [M_rigid, S; S^T, I] against diag(0, w^2).
-  for (const ModalBeam& beam : m.modal) {
-    const ModalPlan p = plan_modal_body({beam.length, beam.EA, beam.GJ, beam.EIy, beam.EIz, beam.rho_A, beam.rho_J, beam.elements},
-                                        beam.modes, beam.damping);
+  for (const ModalSource& beam : m.modal) {
+    const ModalPlan p = plan_modal(beam);
     const int n = beam.modes;
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 + n, 6 + n), K = Eigen::MatrixXd::Zero(6 + n, 6 + n);
     M.topLeftCorner<3, 3>() = p.m * Eigen::Matrix3d::Identity();
@@ -258,7 +257,7 @@ StableStep estimate_stable_step(const Model& m) {
       }
     }
     const double w = std::sqrt(Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(K, M).eigenvalues().maxCoeff());
-    const double z = beam.damping * w / 2;
+    const double z = beam.structure ? beam.damping_ratio : beam.damping * w / 2;  // modal or stiffness-proportional
     stiffest(w / (std::sqrt(1 + z * z) - z), "modal body " + m.body_name(beam.body) + " (" + std::to_string(n) +
                                                  " modes, the highest " + std::to_string(p.omega.maxCoeff()) +
                                                  " rad/s clamped, " + std::to_string(w) + " with its frame free)");
@@ -266,6 +265,7 @@ StableStep estimate_stable_step(const Model& m) {
   s.energy_bound = energy;
   const std::vector<bool> locked = rotation_locked(m);
   const std::vector<bool> free_sphere = free_isotropic(m);
+  s.rotation_bound.assign(m.bodies.size(), 0.0);
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const Body& b = m.bodies[i];
     if (b.particle || locked[i] || free_sphere[i]) continue;
@@ -280,6 +280,7 @@ StableStep estimate_stable_step(const Model& m) {
     }
     const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
     const double bound = std::max(b.angular_velocity.norm(), std::sqrt(2.0 * energy / moments[1]));
+    s.rotation_bound[i] = bound;
     if (bound > s.fastest_rotation) {
       s.fastest_rotation = bound;
       s.fastest_body = b.name;
@@ -316,6 +317,23 @@ std::string stable_step_warning(const Model& m, const StableStep& s) {
   o << " (docs/stability.md)";
   const double pcst = rotation_per_step(mbrt::Scheme::staggered_pcst, !m.modal.empty());
   if (rotation && s.rotation_per_step < pcst) o << "; staggered-pcst allows about " << format(pcst) << " rad per step";
+  return o.str();
+}
+
+std::string modal_spin_warning(const Model& m, const StableStep& s) {
+  std::ostringstream o;
+  for (const ModalSource& source : m.modal) {
+    if (!source.structure) continue;
+    const double spin = s.rotation_bound[static_cast<size_t>(source.body)];
+    const double lowest = plan_modal(source).omega[0];
+    if (spin <= kModalSpinLimit * lowest) continue;
+    if (!o.str().empty()) o << "\n";
+    o << "warning: " << m.name << ": modal body " << m.body_name(source.body) << " (from " << source.structure->file
+      << ") has no geometric stiffness, and with the " << format(s.energy_bound) << " J the scene can release it could turn at "
+      << format(spin) << " rad/s, " << format(spin / lowest) << " of its lowest mode's " << format(lowest)
+      << " rad/s: spin softens such modes where it should stiffen them, by about (spin / omega)^2; keep it below "
+      << kModalSpinLimit << " of that or model it as a beam (docs/flexible.md)";
+  }
   return o.str();
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "analysis.hpp"
 
@@ -14,6 +15,7 @@ struct StableStep {
   double energy_bound = 0.0;       // J: initial kinetic + elastic energy + the largest fall gravity allows
   double fastest_rotation = 0.0;   // rad/s: the energy bound, about each body's inboard joint, largest over the bodies
   std::string fastest_body;
+  std::vector<double> rotation_bound;  // rad/s: the energy bound of each body (Model::bodies; 0 where it cannot turn)
   double rotation_per_step = 0.0;  // rad: what the scheme keeps bounded, measured (docs/stability.md)
   double stiffest_frequency = 0.0; // rad/s: sqrt(k (1/m1 + 1/m2)) of the stiffest spring; 0 without springs
   std::string stiffest_element;
@@ -26,6 +28,12 @@ StableStep estimate_stable_step(const Model& model);
 
 // A warning for stderr when the step is above the estimate, else "".
 std::string stable_step_warning(const Model& model, const StableStep& s);
+
+// A modal body from a file has no geometric stiffness: a warning for stderr
+// where the scene's energy could spin it faster than kModalSpinLimit of its
+// lowest frequency, else "".
+inline constexpr double kModalSpinLimit = 0.3;
+std::string modal_spin_warning(const Model& model, const StableStep& s);
 
 // staggered-tree's kick-drift-kick in joint coordinates is not symplectic
 // where the mass matrix M(q) varies (two joints or more): a warning for
