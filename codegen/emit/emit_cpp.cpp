@@ -542,7 +542,7 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
       planar_force_load(o, f, n);
       continue;
     }
-    if (f.node >= 0 || f.node1 >= 0 || f.node2 >= 0) {
+    if (f.type != ForceType::torque && (f.node >= 0 || f.node1 >= 0 || f.node2 >= 0)) {
       modal_force_load(o, f, n);
       continue;
     }
@@ -560,10 +560,10 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
         o << "    l.elastic_energy += e.energy;\n  }\n";
         break;
       case ForceType::torque:
-        o << "  {  // torque on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1) << "\n"
+        o << "  {  // torque on " << (f.node2 >= 0 ? modal_node_label(f.body2, f.node2) : m_.body_name(f.body2)) << ", reaction on "
+          << (f.node1 >= 0 ? modal_node_label(f.body1, f.node1) : m_.body_name(f.body1)) << "\n"
           << "    const mbrt::Vec3 t = mbrt::axial_torque_world(" << n << ", " << pose(f.body1) << ");\n";
-        if (f.body2 != kGround) o << "    l.w" << at(f.body2) << ".tau += " << pose(f.body2) << ".R.transpose() * t;\n";
-        if (f.body1 != kGround) o << "    l.w" << at(f.body1) << ".tau -= " << pose(f.body1) << ".R.transpose() * t;\n";
+        torque_on_ends(o, f.body1, f.node1, f.body2, f.node2);
         o << "  }\n";
         break;
       case ForceType::force:

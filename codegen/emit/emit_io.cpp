@@ -86,7 +86,8 @@ std::string Emitter::output_layout(const Output& out) const {
 // Planar: the force along an axis in the plane, the torque about the normal,
 // z in plane coordinates (codegen/plan/planar_scene.cpp).
 void Emitter::joint_axis_load(std::ostringstream& o, bool force, int body1, int body2, const std::string& value,
-                              const std::string& axis, const std::string& s1, const std::string& s2) const {
+                              const std::string& axis, const std::string& s1, const std::string& s2, int node1,
+                              int node2) const {
   if (force) {
     o << "    const mbrt::" << (planar_ ? "Vec2" : "Vec3") << " f = " << value << " * (" << pose(body1) << ".R * "
       << axis << (planar_ ? ".head<2>()" : "") << ");\n";
@@ -98,17 +99,17 @@ void Emitter::joint_axis_load(std::ostringstream& o, bool force, int body1, int 
     if (body1 != kGround) o << "    l.w" << at(body1) << ".tau -= t;\n";
   } else {
     o << "    const mbrt::Vec3 t = " << value << " * (" << pose(body1) << ".R * " << axis << ");\n";
-    if (body2 != kGround) o << "    l.w" << at(body2) << ".tau += " << pose(body2) << ".R.transpose() * t;\n";
-    if (body1 != kGround) o << "    l.w" << at(body1) << ".tau -= " << pose(body1) << ".R.transpose() * t;\n";
+    torque_on_ends(o, body1, node1, body2, node2);
   }
 }
 
 void Emitter::input_load(std::ostringstream& o, const Input& in, const InputPlan& p) const {
   const std::string n = in.name;
-  o << "  {  // input " << n << ": " << type_row(in.type).name << " " << input_target(in) << " on "
-    << m_.body_name(p.body2) << ", reaction on " << m_.body_name(p.body1) << "\n";
+  const auto end = [&](int b, int k) { return k >= 0 ? modal_node_label(b, k) : m_.body_name(b); };
+  o << "  {  // input " << n << ": " << type_row(in.type).name << " " << input_target(in) << " on " << end(p.body2, in.node2)
+    << ", reaction on " << end(p.body1, in.node1) << "\n";
   joint_axis_load(o, in.type == InputType::joint_force, p.body1, p.body2, "u[input::" + n + "]", n + "_axis", n + "_s1",
-                  n + "_s2");
+                  n + "_s2", in.node1, in.node2);
   o << "  }\n";
 }
 

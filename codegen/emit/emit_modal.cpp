@@ -4,6 +4,7 @@
 // momenta in the first N entries of a Vec6; the momenta ride in BodyVectors
 // after the bodies, where constraint forces leave them alone.
 #include <algorithm>
+#include <tuple>
 
 #include "emitter.hpp"
 
@@ -61,6 +62,7 @@ std::vector<int> Emitter::modal_nodes(int i) const {
   };
   for (const Output& out : m_.outputs) use(out.body, out.node);
   for (const Force& f : m_.forces) use(f.body, f.node), use(f.body1, f.node1), use(f.body2, f.node2);
+  for (const Input& in : m_.inputs) use(in.body1, in.node1), use(in.body2, in.node2);
   std::sort(nodes.begin(), nodes.end());
   return nodes;
 }
@@ -180,6 +182,20 @@ std::string Emitter::modal_node_output(const Output& out, const std::string& at)
   }
   return "  mbrt::modal_point_velocity" + N + "(" + n + "_modal, " + node + ", " + state_of(i) + ", " + modal_coordinates(k, "modal_q") +
          ", " + modal_coordinates(k, "modal_p") + ", " + at + ");\n";
+}
+
+void Emitter::torque_on_ends(std::ostringstream& o, int body1, int node1, int body2, int node2) const {
+  for (const auto& [b, k, sign] : {std::tuple{body2, node2, "+"}, std::tuple{body1, node1, "-"}}) {
+    if (b == kGround) continue;
+    if (k < 0) {
+      o << "    l.w" << at(b) << ".tau " << sign << "= " << pose(b) << ".R.transpose() * t;\n";
+      continue;
+    }
+    const int m = plan(b).modal;
+    const std::string N = "<" + std::to_string(a_.modal[static_cast<size_t>(m)].modes) + ">";
+    o << "    l.modal" << modal_slot(m) << ".head" << N << "() += mbrt::modal_point_torque" << N << "(" << modal_node_constant(b, k)
+      << ", " << pose(b) << ".R, " << (sign[0] == '-' ? "-t" : "t") << ", l.w" << at(b) << ");\n";
+  }
 }
 
 }  // namespace mbrt::codegen

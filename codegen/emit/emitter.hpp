@@ -195,9 +195,12 @@ class Emitter {
   // Node k of modal body i: NAME@root, NAME@tip or NAME@K, and its constants' name.
   std::string modal_node_label(int i, int k) const;
   std::string modal_node_constant(int i, int k) const { return body(i).name + "_node_" + std::to_string(k); }
-  std::vector<int> modal_nodes(int i) const;  // the nodes the outputs and forces name, ascending
+  std::vector<int> modal_nodes(int i) const;  // the nodes the outputs, forces and inputs name, ascending
   std::string modal_node_output(const Output& out, const std::string& at) const;
   void modal_force_load(std::ostringstream& o, const Force& f, const std::string& n) const;
+  // The torque `t` (world, in scope) on body2, its reaction on body1, either
+  // at a modal body's node (k >= 0) or on the body.
+  void torque_on_ends(std::ostringstream& o, int body1, int node1, int body2, int node2) const;
 
   // emit_parameters.cpp: runtime parameters (docs/parameters.md).
   const Parameter* tunable(ParameterTarget target, int index, int component = 0) const;
@@ -332,7 +335,8 @@ class Emitter {
   bool revolute_output(const Output& out) const;
   std::string output_layout(const Output& out) const;
   void joint_axis_load(std::ostringstream& o, bool force, int body1, int body2, const std::string& value,
-                       const std::string& axis, const std::string& s1, const std::string& s2) const;
+                       const std::string& axis, const std::string& s1, const std::string& s2, int node1 = -1,
+                       int node2 = -1) const;
   void input_load(std::ostringstream& o, const Input& in, const InputPlan& p) const;
   void outputs_function(std::ostringstream& o) const;
 

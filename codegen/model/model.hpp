@@ -142,8 +142,8 @@ struct Force {
   double value = 0.0;                                // torque
   Eigen::Vector3d point = Eigen::Vector3d::Zero();   // force: world at t = 0, fixed in body
   Eigen::Vector3d vector = Eigen::Vector3d::Zero();  // force: world, constant
-  // A modal body's node K (0 root .. elements tip) that the force, or the
-  // spring_damper's end, acts at (NAME@K); -1: a point fixed in the body.
+  // A modal body's node K that the force, or the spring_damper's or torque's
+  // end, acts at (NAME@K); -1: a point fixed in the body (a torque: the body).
   int node = -1, node1 = -1, node2 = -1;
 };
 
@@ -173,6 +173,7 @@ struct Input {
   int joint = -1;                                   // joint_torque, joint_force: Model::joints index
   int body1 = kGround;                              // motor_torque
   int body2 = kGround;
+  int node1 = -1, node2 = -1;                       // motor_torque at a modal body's node (NAME@K); -1: the body
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // motor_torque: unit, world at t = 0, fixed in body1
   double min = 0.0, max = 0.0, safe = 0.0;          // accepted range; value when commands are stale
 };

@@ -468,7 +468,7 @@ int read_body_ref(const Value& v, const Model& model, int* node = nullptr) {
       const bool beam = !modal_source(model, body)->structure;
       fail(v, "'" + name + "' is a modal body: name it, and this attaches " +
                   (beam ? "at its root" : "at one of its clamped nodes' places") +
-                  " (only forces, spring_dampers and outputs take " + name + (beam ? "@tip or " + name + "@K)" : "@NODE)"));
+                  " (only forces, torques, spring_dampers, motor_torque inputs and outputs take " + name + (beam ? "@tip or " + name + "@K)" : "@NODE)"));
     }
     if (k >= 0) {
       *node = k;
@@ -1054,9 +1054,9 @@ Force parse_force(const Value& item, const Model& model) {
   // spring_damper and torque act between two bodies; on one body they
   // would cancel out, which is never what was meant.
   const bool spring = f.type == ForceType::spring_damper;
-  f.body1 = read_body_ref(s.get("body1"), model, spring ? &f.node1 : nullptr);
+  f.body1 = read_body_ref(s.get("body1"), model, &f.node1);
   const Value body2 = s.get("body2");
-  f.body2 = read_body_ref(body2, model, spring ? &f.node2 : nullptr);
+  f.body2 = read_body_ref(body2, model, &f.node2);
   if (f.body1 == f.body2) {
     fail(body2, "a " + type_name + " must connect two different bodies (both are '" +
                     model.body_name(f.body1) + "')");
@@ -1257,9 +1257,9 @@ Input parse_input(const Value& item, const Model& model, std::map<std::string, i
   const std::string type_name = read_signal_head(s, kInputTypeTable, names_seen, in.name, in.type);
   s.restrict_to(input_keys(in.type), "a " + type_name + " input");
   if (in.type == InputType::motor_torque) {
-    in.body1 = read_body_ref(s.get("body1"), model);
+    in.body1 = read_body_ref(s.get("body1"), model, &in.node1);
     const Value body2 = s.get("body2");
-    in.body2 = read_body_ref(body2, model);
+    in.body2 = read_body_ref(body2, model, &in.node2);
     if (in.body1 == in.body2) fail(body2, "a motor_torque must connect two different bodies");
     in.axis = read_axis(s.get("axis"));
   } else {

@@ -259,6 +259,17 @@ inline Eigen::Matrix<double, N, 1> modal_point_force(const ModalPoint<N>& c, con
   return c.displacement.transpose() * fb;
 }
 
+// A torque t (world) on node c: the frame's load takes it, and the modes
+// their share Theta^T R^T t through the node's small rotations, returned for
+// modal_loads' applied.
+template <int N>
+inline Eigen::Matrix<double, N, 1> modal_point_torque(const ModalPoint<N>& c, const Mat3& R, const Vec3& t,
+                                                      Wrench& load) noexcept {
+  const Vec3 tb = R.transpose() * t;
+  load.tau += tb;
+  return c.rotation.transpose() * tb;
+}
+
 // Node c as a force element sees it: its deformed place in body axes, and a
 // velocity of the frame that carries it there (the frame's, plus the node's
 // deformation rate R Psi qdot), so that the element's carried point is the
