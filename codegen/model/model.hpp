@@ -279,8 +279,8 @@ struct ModalStructure {
   std::vector<ModalNodeData> nodes;
   std::vector<int> clamped;      // nodes the modes hold still; joints attach there
   Eigen::MatrixXd stiffness;     // coordinates * nodes, square; empty when the modes are given
-  Eigen::VectorXd frequencies;   // rad/s, ascending, with
-  Eigen::MatrixXd shapes;        // coordinates * nodes x modes
+  Eigen::VectorXd frequencies;   // given modes: rad/s, ascending
+  Eigen::MatrixXd shapes;        // given modes: coordinates * nodes x modes
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // the nodes' centre of mass: the frame's origin
 };
 

@@ -451,6 +451,17 @@ int read_modal_node(const Value& v, const Model& model, const std::string& name,
   return -1;
 }
 
+// A torque at a modal body's node turns its modes through the node's small
+// rotations, which a structure of 3 coordinates a node does not have.
+void check_node_turns(const Value& v, const Model& model, int body, int node) {
+  if (node < 0) return;
+  const ModalSource& source = *modal_source(model, body);
+  if (!source.structure || source.structure->coordinates == 6) return;
+  fail(v, "node '" + source.structure->nodes[static_cast<size_t>(node)].name + "' of modal body '" + model.body_name(body) +
+              "' has no rotations (coordinates: 3 in " + source.structure->file +
+              "): a torque there would reach only its frame; give 6 coordinates a node");
+}
+
 // "ground" or a declared body; returns kGround or the index in model.bodies.
 // With `node`, a modal body's node is taken too (NAME@K: the body, and K in
 // *node; -1 for a body itself); without, only joints' places: its root.
@@ -1054,9 +1065,10 @@ Force parse_force(const Value& item, const Model& model) {
   // spring_damper and torque act between two bodies; on one body they
   // would cancel out, which is never what was meant.
   const bool spring = f.type == ForceType::spring_damper;
-  f.body1 = read_body_ref(s.get("body1"), model, &f.node1);
-  const Value body2 = s.get("body2");
+  const Value body1 = s.get("body1"), body2 = s.get("body2");
+  f.body1 = read_body_ref(body1, model, &f.node1);
   f.body2 = read_body_ref(body2, model, &f.node2);
+  if (!spring) check_node_turns(body1, model, f.body1, f.node1), check_node_turns(body2, model, f.body2, f.node2);
   if (f.body1 == f.body2) {
     fail(body2, "a " + type_name + " must connect two different bodies (both are '" +
                     model.body_name(f.body1) + "')");
@@ -1257,9 +1269,10 @@ Input parse_input(const Value& item, const Model& model, std::map<std::string, i
   const std::string type_name = read_signal_head(s, kInputTypeTable, names_seen, in.name, in.type);
   s.restrict_to(input_keys(in.type), "a " + type_name + " input");
   if (in.type == InputType::motor_torque) {
-    in.body1 = read_body_ref(s.get("body1"), model, &in.node1);
-    const Value body2 = s.get("body2");
+    const Value body1 = s.get("body1"), body2 = s.get("body2");
+    in.body1 = read_body_ref(body1, model, &in.node1);
     in.body2 = read_body_ref(body2, model, &in.node2);
+    check_node_turns(body1, model, in.body1, in.node1), check_node_turns(body2, model, in.body2, in.node2);
     if (in.body1 == in.body2) fail(body2, "a motor_torque must connect two different bodies");
     in.axis = read_axis(s.get("axis"));
   } else {

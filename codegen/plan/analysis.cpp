@@ -555,7 +555,7 @@ static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
     // the modes leave moving with the frame; forces there or at the node they name.
     double size = 0.0;
     for (const Eigen::Vector3d& x : plan.node_points) size = std::max(size, x.norm());
-    const double tolerance = 1e-9 * size;
+    const double tolerance = 1e-6 * size;  // a place copied from a message (6 decimals) must pass
     const auto place = [&](const Eigen::Vector3d& point) {
       const Eigen::Vector3d world = body.position + mbrt::rotation_matrix(body.orientation) * point;
       return "(" + std::to_string(world.x()) + ", " + std::to_string(world.y()) + ", " + std::to_string(world.z()) + " at t = 0)";
@@ -575,7 +575,7 @@ static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
       }
       throw ModelError(where, what,
                        "attaches to modal body '" + body.name + "' away from where its modes are clamped" +
-                           (mounts.empty() ? std::string(" (its file clamps none: only forces and outputs, at nodes, attach to it)")
+                           (mounts.empty() ? std::string(" (its file clamps none: only loads and outputs at its nodes attach to it)")
                                            : "; put it at " + mounts) +
                            ", or name a node (" + body.name + "@NODE) for a force");
     };

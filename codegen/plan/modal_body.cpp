@@ -29,14 +29,12 @@ struct MassPoint {
 };
 
 // The modes' coupling with the frame and the inertia invariants (Shabana
-// 2005, Dynamics of Multibody Systems, ch. 5) over the body's mass points,
-// plus `turning`: the modes' angular momentum of the points' own inertia
-// (sum of I_k times the node's small rotation, 3 x modes). Then the reduced
-// inverse mass and round-off zeroed; p.m, p.J and the geometric stiffness
-// are set before.
-void sum_invariants(ModalPlan& p, const std::vector<MassPoint>& points, const Eigen::Matrix<double, 3, Eigen::Dynamic>& turning) {
+// 2005, Dynamics of Multibody Systems, ch. 5) over the body's mass points.
+// Then the reduced inverse mass and round-off zeroed; p.m, p.J and the
+// geometric stiffness are set before.
+void sum_invariants(ModalPlan& p, const std::vector<MassPoint>& points) {
   const int modes = p.modes;
-  Eigen::Matrix<double, 3, Eigen::Dynamic> St = Eigen::MatrixXd::Zero(3, modes), Sr = turning;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> St = Eigen::MatrixXd::Zero(3, modes), Sr = St;
   for (auto& e : p.E) e = Eigen::MatrixXd::Zero(modes, modes);
   for (auto& g : p.G) g = Eigen::RowVectorXd::Zero(modes);
   for (const MassPoint& point : points) {
@@ -149,7 +147,7 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   const BeamField f = beam_field(beam, shapes);
   std::vector<MassPoint> points;
   for (Eigen::Index k = 0; k < f.x.size(); ++k) points.push_back({f.mass[k], {f.x[k] - centre, 0, 0}, f.displacement[static_cast<size_t>(k)]});
-  sum_invariants(p, points, Eigen::MatrixXd::Zero(3, modes));
+  sum_invariants(p, points);
   return p;
 }
 
@@ -166,6 +164,17 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
     if (c == 6) M.block(c * k + 3, c * k + 3, 3, 3) = s.nodes[static_cast<size_t>(k)].inertia;
   }
   const auto clamped = [&](int node) { return std::find(s.clamped.begin(), s.clamped.end(), node) != s.clamped.end(); };
+  // Motion d of the structure as a rigid body: along x, y, z, then turns about them through the centre.
+  const auto rigid_motion = [&](int d) {
+    Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
+    const Eigen::Vector3d axis = Eigen::Vector3d::Unit(d % 3);
+    for (int k = 0; k < nodes; ++k) {
+      motion.segment<3>(c * k) = d < 3 ? axis : Eigen::Vector3d(axis.cross(s.nodes[static_cast<size_t>(k)].position - s.centre));
+      if (c == 6 && d >= 3) motion.segment<3>(c * k + 3) = axis;
+    }
+    return motion;
+  };
+  const auto rigid_name = [](int d) { return std::string(d < 3 ? "move along " : "turn about ") + "xyz"[d % 3]; };
   Eigen::MatrixXd shapes = Eigen::MatrixXd::Zero(n, modes);
   Eigen::VectorXd omega(modes);
   if (s.stiffness.size() > 0) {
@@ -190,25 +199,22 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
     const int rigid = s.clamped.empty() ? 6 : 0;
     // A free structure must not strain when it moves as a rigid body.
     for (int d = 0; rigid > 0 && d < 6; ++d) {
-      Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
-      for (int k = 0; k < nodes; ++k) {
-        const Eigen::Vector3d axis = Eigen::Vector3d::Unit(d % 3);
-        motion.segment<3>(c * k) = d < 3 ? axis : Eigen::Vector3d(axis.cross(s.nodes[static_cast<size_t>(k)].position - s.centre));
-        if (c == 6 && d >= 3) motion.segment<3>(c * k + 3) = axis;
-      }
+      const Eigen::VectorXd motion = rigid_motion(d);
       if ((s.stiffness * motion).norm() > 1e-8 * s.stiffness.cwiseAbs().maxCoeff() * motion.norm()) {
-        fail(std::string("without clamped nodes the structure must move freely as a rigid body, but a rigid ") +
-             (d < 3 ? "move along " : "turn about ") + "xyz"[d % 3] + " strains it: check the stiffness, or clamp nodes (clamped: [...])");
+        fail("without clamped nodes the structure must move freely as a rigid body, but a rigid " + rigid_name(d) +
+             " strains it: check the stiffness, or clamp nodes (clamped: [...])");
       }
     }
     if (static_cast<int>(with_mass.size()) < rigid + modes) {
-      fail(std::to_string(modes) + " modes asked for, but its " + std::to_string(with_mass.size()) + " free coordinates with mass give " +
+      fail(std::to_string(modes) + " modes kept, but its " + std::to_string(with_mass.size()) + " free coordinates with mass give " +
            std::to_string(static_cast<int>(with_mass.size()) - rigid));
     }
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, restrict(M, with_mass, with_mass));
     if (eig.info() != Eigen::Success) fail("the modes' eigenproblem failed; check the stiffness and the nodes' inertia");
     const Eigen::VectorXd& l = eig.eigenvalues();
-    const double scale = l.cwiseAbs().maxCoeff(), zero = 1e-8 * scale;
+    // The rigid motions checked above are exact null vectors: their
+    // eigenvalues are round-off, far below any elastic one.
+    const double scale = l.cwiseAbs().maxCoeff(), zero = 1e-11 * scale;
     const auto rate = [&](int k) { return std::to_string(std::sqrt(std::max(0.0, l[k]))) + " rad/s"; };
     if (l[0] < -zero) fail("the stiffness is not positive semi-definite (an eigenvalue " + std::to_string(l[0]) + ")");
     if (rigid > 0 && (l[5] > zero || l[6] <= zero)) {
@@ -245,6 +251,17 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
                std::to_string(product) + " of a unit modal mass, at most 0.001): the shapes and the masses do not belong together");
         }
       }
+      // A free structure's elastic modes carry no rigid-body motion (an
+      // exported rigid mode at a near-zero frequency would leave the frame
+      // almost no mass of its own).
+      for (int d = 0; s.clamped.empty() && d < 6; ++d) {
+        const Eigen::VectorXd motion = rigid_motion(d);
+        const double share = motion.dot(M * shapes.col(k)) / std::sqrt(motion.dot(M * motion));
+        if (std::abs(share) > 1e-3) {
+          fail("mode " + std::to_string(k + 1) + " of the free structure carries a rigid-body " + rigid_name(d) + " (" +
+               std::to_string(share) + " of a unit modal mass, at most 0.001): leave rigid-body modes out of the file, or clamp nodes");
+        }
+      }
     }
   }
   fix_signs(shapes);
@@ -259,7 +276,6 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
   p.m = 0;
   p.J.setZero();
   std::vector<MassPoint> points;
-  Eigen::Matrix<double, 3, Eigen::Dynamic> turning = Eigen::MatrixXd::Zero(3, modes);
   for (int k = 0; k < nodes; ++k) {
     const ModalNodeData& d = s.nodes[static_cast<size_t>(k)];
     const Eigen::Vector3d x = d.position - s.centre;
@@ -267,11 +283,31 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
     p.node_points.push_back(x);
     p.m += d.mass;
     p.J += d.mass * (x.squaredNorm() * Eigen::Matrix3d::Identity() - x * x.transpose()) + d.inertia;
-    points.push_back({d.mass, x, p.shapes.middleRows(kNodeCoordinates * k, 3)});
-    turning += d.inertia * p.shapes.middleRows(kNodeCoordinates * k + 3, 3);
+    const Eigen::MatrixXd u = p.shapes.middleRows(kNodeCoordinates * k, 3), turn = p.shapes.middleRows(kNodeCoordinates * k + 3, 3);
+    points.push_back({d.mass, x, u});
+    // The node's inertia as pairs of point masses mu_j at +-e_j along its
+    // principal axes, less their sum at the node: the same inertia, no mass,
+    // moving with the node's small turn (u + theta x r), so that every
+    // invariant (first and second order) carries it alike. Any arm gives
+    // the same sums; mu_j = (I_k + I_l - I_j) / 4 >= 0 for a real inertia.
+    if (d.inertia.isZero()) continue;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(d.inertia);
+    const Eigen::Vector3d I = principal.eigenvalues();
+    double total = 0;
+    for (int j = 0; j < 3; ++j) {
+      const double mu = (I.sum() - 2 * I[j]) / 4;
+      const Eigen::Vector3d r = principal.eigenvectors().col(j);
+      for (const double side : {1.0, -1.0}) {
+        Eigen::MatrixXd moved = u;
+        for (int m = 0; m < modes; ++m) moved.col(m) += Eigen::Vector3d(turn.col(m)).cross(side * r);
+        points.push_back({mu, x + side * r, moved});
+      }
+      total += 2 * mu;
+    }
+    points.push_back({-total, x, u});
   }
   p.kg_spin = p.kg_axial = Eigen::MatrixXd::Zero(modes, modes);
-  sum_invariants(p, points, turning);
+  sum_invariants(p, points);
   return p;
 }
 

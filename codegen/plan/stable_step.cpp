@@ -268,7 +268,8 @@ StableStep estimate_stable_step(const Model& m) {
   s.rotation_bound.assign(m.bodies.size(), 0.0);
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const Body& b = m.bodies[i];
-    if (b.particle || locked[i] || free_sphere[i]) continue;
+    const bool modal = std::any_of(m.modal.begin(), m.modal.end(), [&](const ModalSource& x) { return x.body == static_cast<int>(i); });
+    if (b.particle || locked[i] || (free_sphere[i] && !modal)) continue;
     // The inertia about the joint the body hangs from (parallel axes), as if
     // that joint stood still: a whipped tip link turns about it.
     const Eigen::Quaterniond q(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]);
