@@ -657,6 +657,32 @@ ModalStructure read_modal_structure(const Value& v, const std::string& model_fil
   return out;
 }
 
+// A flexible body's placement: where its own origin goes (`position`), how
+// its axes turn, and its velocities at t = 0 (angular velocity in its axes).
+struct Placement {
+  Eigen::Vector4d orientation{1.0, 0.0, 0.0, 0.0};
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+
+  Eigen::Matrix3d R() const { return mbrt::rotation_matrix(orientation); }
+  // Places body b at `arm` (its own axes) from the origin, moving rigidly with it.
+  void place(Body& b, const Eigen::Vector3d& arm) const {
+    const Eigen::Vector3d world = R() * arm;
+    b.orientation = orientation;
+    b.position = origin + world;
+    b.velocity = velocity + (R() * w).cross(world);
+    b.angular_velocity = w;
+  }
+};
+
+Placement read_placement(const Section& s) {
+  Placement p;
+  if (auto v = s.find("orientation")) p.orientation = read_euler_parameters(*v);
+  if (auto v = s.find("position")) p.origin = read_vector3(*v);
+  if (auto v = s.find("velocity")) p.velocity = read_vector3(*v);
+  if (auto v = s.find("angular_velocity")) p.w = read_vector3(*v);
+  return p;
+}
+
 // A modal body from a file: one body, its frame at the nodes' centre of
 // mass, `position` and `orientation` placing the file's origin and axes.
 void parse_modal_file_body(const std::string& name, const Value& item, const Section& s, const Value& data, Model& model) {
@@ -681,17 +707,7 @@ void parse_modal_file_body(const std::string& name, const Value& item, const Sec
     fail(f.get("file"), "the nodes' mass in " + st.file + " has no inertia about some axis (its nodes lie on one line); "
                         "give nodes inertia (coordinates: 6) or mass off that line");
   }
-  Eigen::Vector4d orientation{1.0, 0.0, 0.0, 0.0};
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
-  if (auto v = s.find("orientation")) orientation = read_euler_parameters(*v);
-  if (auto v = s.find("position")) origin = read_vector3(*v);
-  if (auto v = s.find("velocity")) velocity = read_vector3(*v);
-  if (auto v = s.find("angular_velocity")) w = read_vector3(*v);
-  const Eigen::Vector3d arm = mbrt::rotation_matrix(orientation) * st.centre;
-  frame.orientation = orientation;
-  frame.position = origin + arm;
-  frame.velocity = velocity + (mbrt::rotation_matrix(orientation) * w).cross(arm);
-  frame.angular_velocity = w;
+  read_placement(s).place(frame, st.centre);
   model.bodies.push_back(frame);
   model.modal.push_back(std::move(source));
 }
@@ -723,13 +739,7 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
   section.GAy = section.GAz = section.EA / 3;
   if (auto v = b.find("GA")) std::tie(section.GAy, section.GAz) = read_pair(*v);
   if (auto v = b.find("damping")) section.damping = read_non_negative(*v);
-  Eigen::Vector4d orientation{1.0, 0.0, 0.0, 0.0};
-  Eigen::Vector3d root = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
-  if (auto v = s.find("orientation")) orientation = read_euler_parameters(*v);
-  if (auto v = s.find("position")) root = read_vector3(*v);
-  if (auto v = s.find("velocity")) velocity = read_vector3(*v);
-  if (auto v = s.find("angular_velocity")) w = read_vector3(*v);
-  const Eigen::Matrix3d R = mbrt::rotation_matrix(orientation);
+  const Placement placement = read_placement(s);  // position: the root
   if (auto modes = b.find("modes")) {
     // A modal body: one body, the beam's frame at its centre.
     if (auto v = b.find("GA")) fail(*v, "GA is a nodal beam's (a modal body's modes are Euler-Bernoulli); remove it or drop modes");
@@ -746,11 +756,7 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
     frame.where = item.where;
     frame.mass = rho_A * length;
     frame.inertia = Eigen::Vector3d(rho_J * length, frame.mass * length * length / 12, frame.mass * length * length / 12).asDiagonal();
-    frame.orientation = orientation;
-    const Eigen::Vector3d arm = R * Eigen::Vector3d(length / 2, 0, 0);
-    frame.position = root + arm;
-    frame.velocity = velocity + (R * w).cross(arm);
-    frame.angular_velocity = w;
+    placement.place(frame, Eigen::Vector3d(length / 2, 0, 0));
     model.bodies.push_back(frame);
     model.modal.push_back(beam);
     return;
@@ -766,14 +772,10 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
     node.mass = rho_A * slice;
     const double bending = rho_J / 2 * slice + node.mass * slice * slice / 12;
     node.inertia = Eigen::Vector3d(rho_J * slice, bending, bending).asDiagonal();
-    node.orientation = orientation;
-    const Eigen::Vector3d arm = R * Eigen::Vector3d(k * l, 0, 0);
-    node.position = root + arm;
-    node.velocity = velocity + (R * w).cross(arm);
-    node.angular_velocity = w;
+    placement.place(node, Eigen::Vector3d(k * l, 0, 0));
     model.bodies.push_back(node);
   }
-  for (int k = 0; k < f.elements; ++k) model.beam_elements.push_back({f.first_node + k, f.first_node + k + 1, R.col(1), section});
+  for (int k = 0; k < f.elements; ++k) model.beam_elements.push_back({f.first_node + k, f.first_node + k + 1, placement.R().col(1), section});
   model.flexible.push_back(f);
 }
 

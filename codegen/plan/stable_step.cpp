@@ -234,6 +234,7 @@ StableStep estimate_stable_step(const Model& m) {
   // mass the frame takes, M0 = [M_rigid, S; S^T, I] against diag(0, w^2).
   for (const ModalSource& beam : m.modal) {
     const ModalPlan p = plan_modal(beam);
+    s.lowest_mode.push_back(p.omega[0]);
     const int n = beam.modes;
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 + n, 6 + n), K = Eigen::MatrixXd::Zero(6 + n, 6 + n);
     M.topLeftCorner<3, 3>() = p.m * Eigen::Matrix3d::Identity();
@@ -323,10 +324,10 @@ std::string stable_step_warning(const Model& m, const StableStep& s) {
 
 std::string modal_spin_warning(const Model& m, const StableStep& s) {
   std::ostringstream o;
-  for (const ModalSource& source : m.modal) {
+  for (size_t i = 0; i < m.modal.size(); ++i) {
+    const ModalSource& source = m.modal[i];
     if (!source.structure) continue;
-    const double spin = s.rotation_bound[static_cast<size_t>(source.body)];
-    const double lowest = plan_modal(source).omega[0];
+    const double spin = s.rotation_bound[static_cast<size_t>(source.body)], lowest = s.lowest_mode[i];
     if (spin <= kModalSpinLimit * lowest) continue;
     if (!o.str().empty()) o << "\n";
     o << "warning: " << m.name << ": modal body " << m.body_name(source.body) << " (from " << source.structure->file

@@ -16,6 +16,7 @@ struct StableStep {
   double fastest_rotation = 0.0;   // rad/s: the energy bound, about each body's inboard joint, largest over the bodies
   std::string fastest_body;
   std::vector<double> rotation_bound;  // rad/s: the energy bound of each body (Model::bodies; 0 where it cannot turn)
+  std::vector<double> lowest_mode;     // rad/s: each modal body's lowest frequency, clamped (Model::modal)
   double rotation_per_step = 0.0;  // rad: what the scheme keeps bounded, measured (docs/stability.md)
   double stiffest_frequency = 0.0; // rad/s: sqrt(k (1/m1 + 1/m2)) of the stiffest spring; 0 without springs
   std::string stiffest_element;
