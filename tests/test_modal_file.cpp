@@ -293,22 +293,37 @@ TEST_CASE("the generator names the data file, its line and what is wrong") {
   const std::string nodes =
       "coordinates: 3\nnodes:\n  - {name: root, position: [0, 0, 0], mass: 1}\n  - {name: base, position: [0, 1, 0], mass: 1}\n"
       "  - {name: a, position: [1, 0, 0], mass: 1}\n  - {name: b, position: [2, 0, 0], mass: 1}\n";
-  // A chain root - a - b of 100 N/m springs along x, y and z.
-  std::string rows;
-  for (int i = 0; i < 12; ++i) {
-    std::array<double, 12> r{};
-    const int node = i / 3, d = i % 3;
-    const auto spring = [&](int n1, int n2) {
-      if (node != n1 && node != n2) return;
-      r[static_cast<size_t>(3 * n1 + d)] += node == n1 ? 100 : -100;
-      r[static_cast<size_t>(3 * n2 + d)] += node == n1 ? -100 : 100;
-    };
-    spring(0, 2), spring(2, 3);
-    rows += "  - [";
-    for (size_t j = 0; j < 12; ++j) rows += (j ? ", " : "") + std::to_string(r[j]);
-    rows += "]\n";
-  }
+  // A chain root - a - b of springs along x, y and z: k[d] N/m along axis d.
+  const auto chain_rows = [](const std::array<double, 3>& k) {
+    std::string rows;
+    for (int i = 0; i < 12; ++i) {
+      std::array<double, 12> r{};
+      const int node = i / 3, d = i % 3;
+      const auto spring = [&](int n1, int n2) {
+        if (node != n1 && node != n2) return;
+        r[static_cast<size_t>(3 * n1 + d)] += node == n1 ? k[static_cast<size_t>(d)] : -k[static_cast<size_t>(d)];
+        r[static_cast<size_t>(3 * n2 + d)] += node == n1 ? -k[static_cast<size_t>(d)] : k[static_cast<size_t>(d)];
+      };
+      spring(0, 2), spring(2, 3);
+      rows += "  - [";
+      for (size_t j = 0; j < 12; ++j) rows += (j ? ", " : "") + std::to_string(r[j]);
+      rows += "]\n";
+    }
+    return rows;
+  };
+  const std::string rows = chain_rows({100, 200, 300});
   CHECK(with_file("good.yaml", nodes + "clamped: [root, base]\nstiffness:\n" + rows) == "");
+  // Alike along x, y and z, its modes come in threes of one frequency
+  // (0.618 sqrt(k / m) = 6.18 rad/s first): 2 modes would split the first three.
+  const std::string split = with_file("split.yaml", nodes + "clamped: [root, base]\nstiffness:\n" + chain_rows({100, 100, 100}));
+  CHECK(split.find("2 modes kept, but modes 2 and 3 have the same frequency (0.98") != std::string::npos);
+  CHECK(split.find("keep 1 or 3 modes") != std::string::npos);
+  const std::string given_pair =
+      nodes + "clamped: [root, base]\nmodes:\n  - {frequency: 1.0, shape: [[0, 0, 0], [0, 0, 0], [1, 0, 0], [1, 0, 0]]}\n"
+              "  - {frequency: 2.0, shape: [[0, 0, 0], [0, 0, 0], [0, 1, 0], [0, 1, 0]]}\n"
+              "  - {frequency: 2.0, shape: [[0, 0, 0], [0, 0, 0], [0, 0, 1], [0, 0, 1]]}\n";
+  CHECK(with_file("given_pair.yaml", given_pair).find("2 modes kept, but modes 2 and 3 have the same frequency (2.0") !=
+        std::string::npos);
 
   const std::string missing = generator_error(body + "no_such_file.yaml, modes: 2}\n");
   CHECK(missing.find("bodies[0].flexible.file") != std::string::npos);

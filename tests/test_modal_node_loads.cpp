@@ -121,7 +121,7 @@ TEST_CASE("a free modal body tied to a particle by a spring at its tip keeps the
 
 TEST_CASE("the generator places a force at a modal body's node, and refuses a joint there or a point off the node") {
   const std::string beam =
-      "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 3, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
+      "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 4, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
       "rho_A: 2.0, rho_J: 0.01}\n";
   const std::string pin = "joints:\n  - {name: pin, type: revolute, body1: ground, body2: boom, point: [0, 0, 0], axis: [0, 0, 1]}\n";
   CHECK(generator_error("name: ok\n" + beam + pin + "forces:\n  - {type: force, body: boom@7, vector: [0, 1, 0]}\n") == "");

@@ -20,6 +20,18 @@ void zero_round_off(Matrix& m, double scale) {
 
 namespace {
 
+// Where the frequency just above the cut-off equals the last one kept (a
+// symmetric structure's pair, such as a round beam's two bending planes),
+// which of the pair is kept would be left to round-off: a message naming the
+// pair, else empty. Frequencies in rad/s.
+std::string split_pair(int modes, double kept, double dropped) {
+  if (!(std::abs(dropped - kept) <= 1e-6 * std::max(kept, dropped))) return "";
+  const double hz = kept / (2 * std::acos(-1.0));
+  return std::to_string(modes) + " modes kept, but modes " + std::to_string(modes) + " and " + std::to_string(modes + 1) +
+         " have the same frequency (" + std::to_string(hz) + " Hz, a symmetric pair): keep " + std::to_string(modes - 1) +
+         " or " + std::to_string(modes + 1) + " modes, so that the pair stays together";
+}
+
 // A point of the body's mass: `mass` at `place` (body axes, from the frame's
 // origin), moving by `displacement` q (3 x modes).
 struct MassPoint {
@@ -100,8 +112,8 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   const int candidates = std::min(available, 2 * modes + beam.elements + 6);
   const BeamModes all = beam_modes(beam, BeamSupport::clamped_root, candidates);
   const BeamField all_field = beam_field(beam, all.shapes);
-  std::vector<int> chosen;
-  for (int k = 0; k < candidates && static_cast<int>(chosen.size()) < modes; ++k) {
+  std::vector<int> chosen;  // the modes kept and the next one, for split_pair
+  for (int k = 0; k < candidates && static_cast<int>(chosen.size()) <= modes; ++k) {
     double translational = 0.0;  // of the mode's unit modal mass
     for (size_t p = 0; p < all_field.displacement.size(); ++p) {
       translational += all_field.mass[static_cast<Eigen::Index>(p)] * all_field.displacement[p].col(k).squaredNorm();
@@ -112,6 +124,10 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
     throw std::invalid_argument(std::to_string(modes) + " modes: " + std::to_string(beam.elements) +
                                 " elements give " + std::to_string(chosen.size()) +
                                 " bending and axial modes; use more elements");
+  }
+  if (static_cast<int>(chosen.size()) > modes) {
+    const std::string split = split_pair(modes, all.omega[chosen[static_cast<size_t>(modes - 1)]], all.omega[chosen.back()]);
+    if (!split.empty()) throw std::invalid_argument(split);
   }
   ModalPlan p;
   p.modes = modes;
@@ -222,6 +238,10 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
            "lowest frequencies are " + rate(5) + " and " + rate(6) + ": check the stiffness, or clamp nodes (clamped: [...])");
     }
     if (rigid == 0 && l[0] <= zero) fail("the clamped structure still moves freely (a zero frequency); clamp more nodes or check the stiffness");
+    if (rigid + modes < l.size()) {
+      const std::string split = split_pair(modes, std::sqrt(l[rigid + modes - 1]), std::sqrt(l[rigid + modes]));
+      if (!split.empty()) fail(split);
+    }
     for (int k = 0; k < modes; ++k) {
       omega[k] = std::sqrt(l[rigid + k]);
       const Eigen::VectorXd v = eig.eigenvectors().col(rigid + k), follow = T * v;
@@ -231,6 +251,10 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
   } else {
     if (s.frequencies.size() < modes) {
       fail("it gives " + std::to_string(s.frequencies.size()) + " modes, the model keeps " + std::to_string(modes));
+    }
+    if (s.frequencies.size() > modes) {
+      const std::string split = split_pair(modes, s.frequencies[modes - 1], s.frequencies[modes]);
+      if (!split.empty()) fail(split);
     }
     omega = s.frequencies.head(modes);
     shapes = s.shapes.leftCols(modes);
