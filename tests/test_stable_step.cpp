@@ -153,3 +153,25 @@ solver: {scheme: staggered-pcst, step: 1.0e-3}
   CHECK(s.fastest_body == "spinner");
   CHECK(s.exceeded);
 }
+
+TEST_CASE("bodies welded together turn as one: their bound takes the group's inertia about the joint it hangs from") {
+  // A light hub on an axle along z at the origin with a plate welded to it at
+  // x = 0.2, both turning at 10 rad/s about z. About the axle the group's
+  // inertia is hub + plate + m d^2: diag(0.501, 2.901, 3.351); the energy
+  // 1/2 3.351 w^2 could turn it at most w sqrt(3.351 / 2.901) about its middle axis.
+  const auto s = estimate_stable_step(parse_model(R"(name: hub_plate
+bodies:
+  - {name: hub, mass: 1, inertia: [0.001, 0.001, 0.001], angular_velocity: [0, 0, 10]}
+  - {name: plate, mass: 10, inertia: [0.5, 0.4, 0.85], position: [0.5, 0, 0], velocity: [0, 5, 0], angular_velocity: [0, 0, 10]}
+joints:
+  - {name: axle, type: revolute, body1: ground, body2: hub, point: [0, 0, 0], axis: [0, 0, 1]}
+  - {name: weld, type: fixed, body1: hub, body2: plate, point: [0.2, 0, 0]}
+solver: {scheme: staggered-pcst, step: 1.0e-3}
+)",
+                                                  "hub_plate.yaml"));
+  CHECK(s.energy_bound == doctest::Approx(0.5 * 3.351 * 100).epsilon(1e-12));
+  const double bound = 10 * std::sqrt(3.351 / 2.901);
+  CHECK(s.rotation_bound[0] == doctest::Approx(bound).epsilon(1e-12));
+  CHECK(s.rotation_bound[1] == doctest::Approx(bound).epsilon(1e-12));
+  CHECK(s.fastest_rotation == doctest::Approx(bound).epsilon(1e-12));
+}

@@ -95,7 +95,7 @@ Generated generate(const std::string& model_path, const GenerateOptions& options
   g.analysis = analyse(g.model, options.specialize);
   if (options.project_initial) project_initial_state(g.model, g.analysis);
   check_initial_state(g.model, g.analysis);
-  g.stable = estimate_stable_step(g.model);
+  g.stable = estimate_stable_step(g.model, g.analysis.modal);
   if (const std::string w = stable_step_warning(g.model, g.stable); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   if (const std::string w = tree_energy_warning(g.model); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   if (const std::string w = modal_spin_warning(g.model, g.stable); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());

@@ -120,6 +120,24 @@ std::vector<bool> rotation_locked(const Model& m) {
   return locked;
 }
 
+// Bodies welded together (fixed joints between two bodies) turn as one: each
+// body's group, by the index of its first member.
+std::vector<size_t> welded_groups(const Model& m) {
+  std::vector<size_t> group(m.bodies.size());
+  for (size_t i = 0; i < group.size(); ++i) group[i] = i;
+  const auto first = [&](size_t i) {
+    while (group[i] != i) i = group[i];
+    return i;
+  };
+  for (const Joint& j : m.joints) {
+    if (j.type != JointType::fixed || j.body1 == kGround || j.body2 == kGround) continue;
+    const size_t a = first(static_cast<size_t>(j.body1)), b = first(static_cast<size_t>(j.body2));
+    group[std::max(a, b)] = std::min(a, b);
+  }
+  for (size_t i = 0; i < group.size(); ++i) group[i] = first(i);
+  return group;
+}
+
 // Rigid bodies in no joint or driver with equal principal moments (a ball
 // on contacts, docs/contact.md): no gyroscopic torque, and their rotation
 // moves no joint, so its rate does not bound the step (every scheme turns
@@ -153,7 +171,7 @@ std::string format(double x) {
 
 }  // namespace
 
-StableStep estimate_stable_step(const Model& m) {
+StableStep estimate_stable_step(const Model& m, const std::vector<ModalPlan>& modal_plans) {
   StableStep s;
   s.rotation_per_step = rotation_per_step(m.solver.scheme, !m.modal.empty());
   const Reach r = reach(m);
@@ -232,8 +250,9 @@ StableStep estimate_stable_step(const Model& m) {
   // are clamped to the frame, but the frame moves with them: with the frame
   // free (what the body's joints can only lower) they are stiffer, by the
   // mass the frame takes, M0 = [M_rigid, S; S^T, I] against diag(0, w^2).
-  for (const ModalSource& beam : m.modal) {
-    const ModalPlan p = plan_modal(beam);
+  for (size_t i = 0; i < m.modal.size(); ++i) {
+    const ModalSource& beam = m.modal[i];
+    const ModalPlan p = i < modal_plans.size() ? modal_plans[i] : plan_modal(beam);
     s.lowest_mode.push_back(p.omega[0]);
     const int n = beam.modes;
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 + n, 6 + n), K = Eigen::MatrixXd::Zero(6 + n, 6 + n);
@@ -266,19 +285,44 @@ StableStep estimate_stable_step(const Model& m) {
   s.energy_bound = energy;
   const std::vector<bool> locked = rotation_locked(m);
   const std::vector<bool> free_sphere = free_isotropic(m);
+  const std::vector<size_t> group = welded_groups(m);
+  // A welded group hangs from the joint of its member nearest the ground
+  // along the joints (the others' inboard joints are its welds).
+  std::vector<size_t> hangs_from(m.bodies.size());
+  for (size_t i = 0; i < m.bodies.size(); ++i) {
+    size_t& k = hangs_from[group[i]];
+    if (group[i] == i || (r.tied[i] && (!r.tied[k] || r.distance[i] < r.distance[k]))) k = i;
+  }
   s.rotation_bound.assign(m.bodies.size(), 0.0);
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const Body& b = m.bodies[i];
     const bool modal = std::any_of(m.modal.begin(), m.modal.end(), [&](const ModalSource& x) { return x.body == static_cast<int>(i); });
     if (b.particle || locked[i] || (free_sphere[i] && !modal)) continue;
-    // The inertia about the joint the body hangs from (parallel axes), as if
-    // that joint stood still: a whipped tip link turns about it.
-    const Eigen::Quaterniond q(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]);
-    const Eigen::Matrix3d rot = q.toRotationMatrix();
-    Eigen::Matrix3d inertia = rot * b.inertia * rot.transpose();
-    if (r.tied[i]) {
-      const Eigen::Vector3d d = b.position - r.inboard[i];
-      inertia += b.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+    // The inertia of the body and those welded to it about the joint they
+    // hang from (parallel axes), as if that joint stood still: a whipped tip
+    // link turns about it.
+    // A group no joint ties to the ground turns about its centre of mass.
+    const size_t pivot = hangs_from[group[i]];
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double mass = 0.0;
+    for (size_t k = 0; k < m.bodies.size(); ++k) {
+      if (group[k] != group[i]) continue;
+      centre += m.bodies[k].mass * m.bodies[k].position;
+      mass += m.bodies[k].mass;
+    }
+    if (r.tied[pivot]) centre = r.inboard[pivot];
+    else centre /= mass;
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+    for (size_t k = 0; k < m.bodies.size(); ++k) {
+      if (group[k] != group[i]) continue;
+      const Body& member = m.bodies[k];
+      if (!member.particle) {
+        const Eigen::Quaterniond q(member.orientation[0], member.orientation[1], member.orientation[2], member.orientation[3]);
+        const Eigen::Matrix3d rot = q.toRotationMatrix();
+        inertia += rot * member.inertia * rot.transpose();
+      }
+      const Eigen::Vector3d d = member.position - centre;
+      inertia += member.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
     }
     const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
     const double bound = std::max(b.angular_velocity.norm(), std::sqrt(2.0 * energy / moments[1]));

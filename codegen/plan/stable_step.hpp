@@ -25,7 +25,9 @@ struct StableStep {
   std::string note;                // what the estimate leaves out, when the scene has it
 };
 
-StableStep estimate_stable_step(const Model& model);
+// modal_plans: the analysis's plans of Model::modal where the caller has
+// them (a structure's eigenproblem is the generator's largest), else solved here.
+StableStep estimate_stable_step(const Model& model, const std::vector<ModalPlan>& modal_plans = {});
 
 // A warning for stderr when the step is above the estimate, else "".
 std::string stable_step_warning(const Model& model, const StableStep& s);
