@@ -289,8 +289,18 @@ TEST_CASE("the generator refuses what a modal body cannot do, naming the key") {
   // A round beam bends alike in both planes: 3 modes would keep one of the
   // second pair, in a direction left to round-off.
   const std::string split = generator_error("name: split\n" + std::string(beam).replace(beam.find("modes: 4"), 8, "modes: 3") + pin);
-  CHECK(split.find("3 modes kept, but modes 3 and 4 have the same frequency (17.5") != std::string::npos);
+  CHECK(split.find("3 modes kept, but modes 3 and 4 have the same frequency (17.53") != std::string::npos);
   CHECK(split.find("keep 2 or 4 modes") != std::string::npos);
+  const std::string one = generator_error("name: one\n" + std::string(beam).replace(beam.find("modes: 4"), 8, "modes: 1") + pin);
+  CHECK(one.find("1 modes kept, but modes 1 and 2 have the same frequency (2.79") != std::string::npos);
+  CHECK(one.find("keep 2 modes, so that") != std::string::npos);
+  // A short round beam: the axial mode (EA 1e5: 28 Hz) comes after the
+  // second bending pair, so the third pair is modes 6 and 7 and 6 modes split it.
+  std::string short_beam = std::string(beam).replace(beam.find("modes: 4"), 8, "modes: 6");
+  short_beam.replace(short_beam.find("EA: 1.0e6"), 9, "EA: 1.0e5");
+  const std::string six = generator_error("name: six\n" + short_beam + pin);
+  CHECK(six.find("6 modes kept, but modes 6 and 7 have the same frequency") != std::string::npos);
+  CHECK(six.find("keep 5 modes, so that") != std::string::npos);
   CHECK(generator_error("name: flat\n" + std::string(beam).replace(beam.find("EI: 800.0"), 9, "EI: [800.0, 801.0]") + pin) == "");
   CHECK(generator_error("name: node\n" + beam +
                         "joints:\n  - {name: pin, type: revolute, body1: ground, body2: boom@root, point: [0, 0, 0], axis: [0, 0, 1]}\n")

@@ -289,6 +289,8 @@ struct ModalStructure {
 // either a uniform beam clamped at its root (body point (-length / 2, 0, 0);
 // its lowest bending and axial modes from `elements` finite elements), or a
 // structure from a file.
+inline constexpr int kMaxModes = 6;  // a modal body's modes kept, at most
+
 struct ModalSource {
   int body = kGround;
   int modes = 0;

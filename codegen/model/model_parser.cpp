@@ -692,7 +692,7 @@ void parse_modal_file_body(const std::string& name, const Value& item, const Sec
   source.structure = read_modal_structure(f.get("file"), model.file);
   const ModalStructure& st = *source.structure;
   source.modes = read_integer_at_least(f.get("modes"), 1);
-  if (source.modes > 6) fail_expected(f.get("modes"), "at most 6 modes");
+  if (source.modes > kMaxModes) fail_expected(f.get("modes"), "at most " + std::to_string(kMaxModes) + " modes");
   if (auto z = f.find("damping_ratio")) source.damping_ratio = read_non_negative(*z);
   Body frame;
   frame.name = name;
@@ -748,7 +748,7 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
     beam.modes = read_integer_at_least(*modes, 1);
     beam.length = length, beam.EA = section.EA, beam.GJ = section.GJ, beam.EIy = section.EIy, beam.EIz = section.EIz;
     beam.rho_A = rho_A, beam.rho_J = rho_J, beam.damping = section.damping, beam.elements = f.elements;
-    if (beam.modes > 6) fail_expected(*modes, "at most 6 modes");
+    if (beam.modes > kMaxModes) fail_expected(*modes, "at most " + std::to_string(kMaxModes) + " modes");
     // Six modes converge long before; the modes' eigenproblem grows as the cube.
     if (beam.elements > 60) fail_expected(b.get("elements"), "at most 60 elements for a modal body");
     Body frame;

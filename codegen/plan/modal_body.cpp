@@ -20,16 +20,27 @@ void zero_round_off(Matrix& m, double scale) {
 
 namespace {
 
-// Where the frequency just above the cut-off equals the last one kept (a
-// symmetric structure's pair, such as a round beam's two bending planes),
-// which of the pair is kept would be left to round-off: a message naming the
-// pair, else empty. Frequencies in rad/s.
-std::string split_pair(int modes, double kept, double dropped) {
-  if (!(std::abs(dropped - kept) <= 1e-6 * std::max(kept, dropped))) return "";
-  const double hz = kept / (2 * std::acos(-1.0));
-  return std::to_string(modes) + " modes kept, but modes " + std::to_string(modes) + " and " + std::to_string(modes + 1) +
-         " have the same frequency (" + std::to_string(hz) + " Hz, a symmetric pair): keep " + std::to_string(modes - 1) +
-         " or " + std::to_string(modes + 1) + " modes, so that the pair stays together";
+// Where the first mode left out has the frequency of the last one kept (a
+// symmetric structure's group, such as a round beam's two bending planes),
+// which of the group is kept would be left to round-off: a message naming
+// the group and the counts that keep it whole, else empty. `omega`: the
+// frequencies available, ascending, rad/s.
+std::string split_group(int modes, const std::vector<double>& omega) {
+  const int n = static_cast<int>(omega.size());
+  const auto same = [&](int i) { return std::abs(omega[i + 1] - omega[i]) <= 1e-6 * omega[i + 1]; };
+  if (modes >= n || !same(modes - 1)) return "";
+  int first = modes - 1, last = modes;  // the group, from 0
+  while (first > 0 && same(first - 1)) --first;
+  while (last + 1 < n && same(last)) ++last;
+  std::vector<std::string> counts;
+  if (first >= 1) counts.push_back(std::to_string(first));
+  if (last + 1 <= kMaxModes) counts.push_back(std::to_string(last + 1));
+  const std::string keep = counts.empty()
+      ? "no count from 1 to " + std::to_string(kMaxModes) + " keeps it whole; make the structure a little less symmetric (a round beam: EI differing slightly between its planes)"
+      : "keep " + counts.front() + (counts.size() > 1 ? " or " + counts.back() : "") + " modes, so that the group stays whole";
+  return std::to_string(modes) + " modes kept, but modes " + std::to_string(first + 1) + (last == first + 1 ? " and " : " to ") +
+         std::to_string(last + 1) +
+         " have the same frequency (" + std::to_string(omega[modes - 1] / (2 * std::acos(-1.0))) + " Hz, a symmetric group): " + keep;
 }
 
 // A point of the body's mass: `mass` at `place` (body axes, from the frame's
@@ -112,8 +123,8 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   const int candidates = std::min(available, 2 * modes + beam.elements + 6);
   const BeamModes all = beam_modes(beam, BeamSupport::clamped_root, candidates);
   const BeamField all_field = beam_field(beam, all.shapes);
-  std::vector<int> chosen;  // the modes kept and the next one, for split_pair
-  for (int k = 0; k < candidates && static_cast<int>(chosen.size()) <= modes; ++k) {
+  std::vector<int> chosen;  // the modes kept and those up to one beyond the most a body keeps, for split_group
+  for (int k = 0; k < candidates && static_cast<int>(chosen.size()) <= std::max(modes, kMaxModes); ++k) {
     double translational = 0.0;  // of the mode's unit modal mass
     for (size_t p = 0; p < all_field.displacement.size(); ++p) {
       translational += all_field.mass[static_cast<Eigen::Index>(p)] * all_field.displacement[p].col(k).squaredNorm();
@@ -125,10 +136,9 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
                                 " elements give " + std::to_string(chosen.size()) +
                                 " bending and axial modes; use more elements");
   }
-  if (static_cast<int>(chosen.size()) > modes) {
-    const std::string split = split_pair(modes, all.omega[chosen[static_cast<size_t>(modes - 1)]], all.omega[chosen.back()]);
-    if (!split.empty()) throw std::invalid_argument(split);
-  }
+  std::vector<double> frequencies;
+  for (const int k : chosen) frequencies.push_back(all.omega[k]);
+  if (const std::string split = split_group(modes, frequencies); !split.empty()) throw std::invalid_argument(split);
   ModalPlan p;
   p.modes = modes;
   const int n = static_cast<int>(all.shapes.rows());
@@ -238,10 +248,9 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
            "lowest frequencies are " + rate(5) + " and " + rate(6) + ": check the stiffness, or clamp nodes (clamped: [...])");
     }
     if (rigid == 0 && l[0] <= zero) fail("the clamped structure still moves freely (a zero frequency); clamp more nodes or check the stiffness");
-    if (rigid + modes < l.size()) {
-      const std::string split = split_pair(modes, std::sqrt(l[rigid + modes - 1]), std::sqrt(l[rigid + modes]));
-      if (!split.empty()) fail(split);
-    }
+    std::vector<double> available;
+    for (Eigen::Index k = rigid; k < l.size() && k <= rigid + kMaxModes; ++k) available.push_back(std::sqrt(std::max(0.0, l[k])));
+    if (const std::string split = split_group(modes, available); !split.empty()) fail(split);
     for (int k = 0; k < modes; ++k) {
       omega[k] = std::sqrt(l[rigid + k]);
       const Eigen::VectorXd v = eig.eigenvectors().col(rigid + k), follow = T * v;
@@ -252,10 +261,9 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
     if (s.frequencies.size() < modes) {
       fail("it gives " + std::to_string(s.frequencies.size()) + " modes, the model keeps " + std::to_string(modes));
     }
-    if (s.frequencies.size() > modes) {
-      const std::string split = split_pair(modes, s.frequencies[modes - 1], s.frequencies[modes]);
-      if (!split.empty()) fail(split);
-    }
+    // The file orders a group of equal frequencies as its solver happened to.
+    const std::vector<double> given(s.frequencies.data(), s.frequencies.data() + s.frequencies.size());
+    if (const std::string split = split_group(modes, given); !split.empty()) fail(split);
     omega = s.frequencies.head(modes);
     shapes = s.shapes.leftCols(modes);
     const double largest = shapes.cwiseAbs().maxCoeff();
