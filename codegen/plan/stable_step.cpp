@@ -285,45 +285,43 @@ StableStep estimate_stable_step(const Model& m, const std::vector<ModalPlan>& mo
   s.energy_bound = energy;
   const std::vector<bool> locked = rotation_locked(m);
   const std::vector<bool> free_sphere = free_isotropic(m);
+  // Each welded group's inertia about the joint it hangs from (parallel
+  // axes), as if that joint stood still: a whipped tip link turns about it.
+  // That joint is its member's nearest the ground along the joints (the
+  // others' inboard joints are its welds); a group no joint ties to the
+  // ground turns about its centre of mass.
   const std::vector<size_t> group = welded_groups(m);
-  // A welded group hangs from the joint of its member nearest the ground
-  // along the joints (the others' inboard joints are its welds).
   std::vector<size_t> hangs_from(m.bodies.size());
+  std::vector<Eigen::Vector3d> centre(m.bodies.size(), Eigen::Vector3d::Zero());
+  std::vector<double> mass(m.bodies.size(), 0.0);
   for (size_t i = 0; i < m.bodies.size(); ++i) {
-    size_t& k = hangs_from[group[i]];
-    if (group[i] == i || (r.tied[i] && (!r.tied[k] || r.distance[i] < r.distance[k]))) k = i;
+    const size_t g = group[i];
+    size_t& k = hangs_from[g];
+    if (g == i || (r.tied[i] && (!r.tied[k] || r.distance[i] < r.distance[k]))) k = i;
+    centre[g] += m.bodies[i].mass * m.bodies[i].position;
+    mass[g] += m.bodies[i].mass;
+  }
+  for (size_t g = 0; g < m.bodies.size(); ++g) {
+    if (group[g] == g) centre[g] = r.tied[hangs_from[g]] ? r.inboard[hangs_from[g]] : Eigen::Vector3d(centre[g] / mass[g]);
+  }
+  std::vector<Eigen::Matrix3d> group_inertia(m.bodies.size(), Eigen::Matrix3d::Zero());
+  for (size_t i = 0; i < m.bodies.size(); ++i) {
+    const Body& b = m.bodies[i];
+    Eigen::Matrix3d& inertia = group_inertia[group[i]];
+    if (!b.particle) {
+      const Eigen::Quaterniond q(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]);
+      const Eigen::Matrix3d rot = q.toRotationMatrix();
+      inertia += rot * b.inertia * rot.transpose();
+    }
+    const Eigen::Vector3d d = b.position - centre[group[i]];
+    inertia += b.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
   }
   s.rotation_bound.assign(m.bodies.size(), 0.0);
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const Body& b = m.bodies[i];
     const bool modal = std::any_of(m.modal.begin(), m.modal.end(), [&](const ModalSource& x) { return x.body == static_cast<int>(i); });
     if (b.particle || locked[i] || (free_sphere[i] && !modal)) continue;
-    // The inertia of the body and those welded to it about the joint they
-    // hang from (parallel axes), as if that joint stood still: a whipped tip
-    // link turns about it.
-    // A group no joint ties to the ground turns about its centre of mass.
-    const size_t pivot = hangs_from[group[i]];
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    double mass = 0.0;
-    for (size_t k = 0; k < m.bodies.size(); ++k) {
-      if (group[k] != group[i]) continue;
-      centre += m.bodies[k].mass * m.bodies[k].position;
-      mass += m.bodies[k].mass;
-    }
-    if (r.tied[pivot]) centre = r.inboard[pivot];
-    else centre /= mass;
-    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-    for (size_t k = 0; k < m.bodies.size(); ++k) {
-      if (group[k] != group[i]) continue;
-      const Body& member = m.bodies[k];
-      if (!member.particle) {
-        const Eigen::Quaterniond q(member.orientation[0], member.orientation[1], member.orientation[2], member.orientation[3]);
-        const Eigen::Matrix3d rot = q.toRotationMatrix();
-        inertia += rot * member.inertia * rot.transpose();
-      }
-      const Eigen::Vector3d d = member.position - centre;
-      inertia += member.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
-    }
+    const Eigen::Matrix3d& inertia = group_inertia[group[i]];
     const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
     const double bound = std::max(b.angular_velocity.norm(), std::sqrt(2.0 * energy / moments[1]));
     s.rotation_bound[i] = bound;
