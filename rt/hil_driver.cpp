@@ -227,6 +227,7 @@ int run(const HilOptions& opt) {
   stats.deadline_misses = clock.deadline_misses();
   stats.overruns = clock.overruns();
   stats.commands = loop.gate.counts();
+  model::refresh_bodies(loop.state);  // where the step leaves them to be formed on demand
   stats.state_finite = mbrt::schemes::finite(loop.state);
 
   const std::string json = to_json(stats);

@@ -39,9 +39,15 @@ double kernel_flops(const std::string& src, const std::string& name) {
   return std::stod(digits);
 }
 
-// joint_accelerations and body_states per body of the staggered-tree step of
-// the model that `make` (a shell command) writes.
-double kernel_flops_per_body(const std::string& make, const std::string& name, int bodies) {
+struct PerBody {
+  double recursion;  // joint_accelerations
+  double states;     // body_states, which solver.body_states: on_demand leaves out of the step
+  double both() const { return recursion + states; }
+};
+
+// The kernels' flops per body of the staggered-tree step of the model that
+// `make` (a shell command) writes.
+PerBody kernel_flops_per_body(const std::string& make, const std::string& name, int bodies) {
   const fs::path dir = fs::path(MBRT_TEST_WORK_DIR) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -53,7 +59,7 @@ double kernel_flops_per_body(const std::string& make, const std::string& name, i
   REQUIRE(in);
   std::stringstream src;
   src << in.rdbuf();
-  return (kernel_flops(src.str(), "joint_accelerations") + kernel_flops(src.str(), "body_states")) / bodies;
+  return {kernel_flops(src.str(), "joint_accelerations") / bodies, kernel_flops(src.str(), "body_states") / bodies};
 }
 
 std::string tool(const std::string& script) { return "python3 '" + std::string(MBRT_SOURCE_DIR) + "/tools/" + script + "'"; }
@@ -66,18 +72,21 @@ TEST_CASE("random general-angle chains: the kernels stay within 580 flops per bo
   const std::array<std::array<int, 2>, 4> cases = {{{8, 4}, {12, 1}, {20, 3}, {32, 7}}};
   for (const auto& [links, seed] : cases) {
     const std::string name = "random_" + std::to_string(links) + "_" + std::to_string(seed);
-    const double per_body = kernel_flops_per_body(
+    const PerBody per_body = kernel_flops_per_body(
         tool("make_spatial.py") + " random " + std::to_string(links) + " --seed " + std::to_string(seed), name, links);
-    MESSAGE(name << ": " << per_body << " flops per body");
-    CHECK(per_body <= 580.0);
+    MESSAGE(name << ": " << per_body.both() << " flops per body, " << per_body.recursion << " of them the recursion");
+    CHECK(per_body.both() <= 580.0);
+    // With the bodies' states on demand the step is the recursion and about
+    // 55 more, within the 500 a body of the goal (docs/staggered-tree.md).
+    CHECK(per_body.recursion <= 420.0);
   }
 }
 
 TEST_CASE("arms, the humanoid and planar chains stay cheaper") {
   const std::string stress = std::string(MBRT_TEST_MODELS) + "/stress/";
-  const double arm = kernel_flops_per_body("cat '" + stress + "arm_7.yaml'", "arm_7", 7);
-  const double humanoid = kernel_flops_per_body("cat '" + stress + "humanoid_30.yaml'", "humanoid_30", 30);
-  const double planar = kernel_flops_per_body(tool("make_chain.py") + " 16", "planar_16", 16);
+  const double arm = kernel_flops_per_body("cat '" + stress + "arm_7.yaml'", "arm_7", 7).both();
+  const double humanoid = kernel_flops_per_body("cat '" + stress + "humanoid_30.yaml'", "humanoid_30", 30).both();
+  const double planar = kernel_flops_per_body(tool("make_chain.py") + " 16", "planar_16", 16).both();
   MESSAGE("arm_7 " << arm << ", humanoid_30 " << humanoid << ", planar 16 " << planar << " flops per body");
   CHECK(arm <= 260.0);
   CHECK(humanoid <= 250.0);

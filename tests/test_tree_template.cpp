@@ -48,6 +48,7 @@ struct Pendulum {
   static constexpr double kStep = 1e-3;
   static constexpr int kStages = 1;
   static constexpr bool kExternalLoads = false;
+  static constexpr bool kBodyStatesEachStep = true;
 
   static void half_angles(const Dofs& q, HalfAngles& ha) { ha[0] = mbrt::sin_cos(0.5 * q[0]); }
   static void body_states(const Dofs&, const HalfAngles& ha, const Dofs& qd, State& s) {

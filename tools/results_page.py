@@ -260,7 +260,10 @@ def tree_costs(out):
         "`mbrt gen MODEL --scheme S --report`: floating-point operations counted in the generated step (a fused "
         "multiply-add as two) and instructions per step by callgrind in the compiled program. Targets: at most "
         "500 flops per body on spatial revolute arms and chains, 200 on planar chains, instructions at most 1.5 "
-        "times the flops.")
+        "times the flops. A scheme written `SCHEME:on_demand` was generated with `--body-states on_demand`: its "
+        "step leaves the bodies' world states to `refresh_bodies()` (docs/staggered-tree.md, \"Body states on "
+        "demand\"). Rows of schemes an earlier run measured are kept; the flop counts do not depend on the "
+        "machine or its load.")
     table(out, ["model", "made by", "bodies", "scheme", "flops per step", "flops per body",
                 "instructions per step", "instructions per flop"],
           [[r["model"], "`%s`" % r["made_by"], r["bodies"], r["scheme"], r["flops_per_step"], r["flops_per_body"],

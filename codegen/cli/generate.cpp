@@ -40,6 +40,10 @@ void apply_overrides(Model& model, const GenerateOptions& options) {
   if (options.parallel_interface) model.solver.parallel_interface = *options.parallel_interface;
   if (options.pcg_iterations) model.solver.pcg_iterations = *options.pcg_iterations;
   if (options.pcg_preconditioner) model.solver.pcg_preconditioner = *options.pcg_preconditioner;
+  if (options.body_states) {
+    model.solver.body_states_on_demand = *options.body_states == "on_demand";
+    model.solver.body_states_where = {model.file, 0, 0};
+  }
   Ali3pSettings& ali3p = model.solver.ali3p;
   if (options.ali3p_projection) ali3p.cuadrado_projection = *options.ali3p_projection == "cuadrado";
   if (options.ali3p_integrator) ali3p.generalized_alpha = *options.ali3p_integrator == "generalized_alpha";
@@ -80,6 +84,8 @@ void check_generate_options(const GenerateOptions& options) {
   if (options.pcg_iterations && *options.pcg_iterations < 1) bad("--pcg-iterations", "expected an integer >= 1");
   if (options.pcg_preconditioner && *options.pcg_preconditioner != "block" && *options.pcg_preconditioner != "diagonal")
     bad("--pcg-preconditioner", "expected block or diagonal, got '" + *options.pcg_preconditioner + "'");
+  if (options.body_states && *options.body_states != "each_step" && *options.body_states != "on_demand")
+    bad("--body-states", "expected each_step or on_demand, got '" + *options.body_states + "'");
   if (options.ali3p_projection && *options.ali3p_projection != "bayo" && *options.ali3p_projection != "cuadrado")
     bad("--ali3p-projection", "expected bayo or cuadrado, got '" + *options.ali3p_projection + "'");
   if (options.ali3p_integrator && *options.ali3p_integrator != "trapezoidal" &&

@@ -21,6 +21,7 @@ struct GenerateOptions {
   std::optional<std::string> parallel_interface;  // direct | pcg
   std::optional<int> pcg_iterations;
   std::optional<std::string> pcg_preconditioner;  // block | diagonal
+  std::optional<std::string> body_states;         // each_step | on_demand
   std::optional<std::string> name;  // replaces the model's name (and C++ namespace)
   std::optional<std::string> ali3p_projection;  // bayo | cuadrado
   std::optional<std::string> ali3p_integrator;  // trapezoidal | generalized_alpha

@@ -78,6 +78,9 @@ void add_generate_options(CLI::App& app, mbrt::codegen::GenerateOptions& gen, st
       ->check(number_check("an integer", [](double k) { return k == std::floor(k) && std::abs(k) < 1e9; }));
   app.add_option_function<std::string>("--pcg-preconditioner", [&gen](const std::string& m) { gen.pcg_preconditioner = m; },
                                        "block or diagonal, overriding solver.pcg_preconditioner");
+  app.add_option_function<std::string>("--body-states", [&gen](const std::string& m) { gen.body_states = m; },
+                                       "each_step or on_demand (tree schemes): when the bodies' world states are "
+                                       "formed, overriding solver.body_states");
   app.add_flag("--project-initial", gen.project_initial, "project the initial state onto the constraints");
   app.add_flag("--can-fd", gen.can_fd, "the CAN layout in CAN FD frames of up to 64 bytes");
   app.add_option_function<std::string>("--name", [&gen](const std::string& n) { gen.name = n; },

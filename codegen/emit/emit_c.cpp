@@ -100,7 +100,12 @@ std::vector<GeneratedFile> Emitter::c_interface() const {
     << "void " << n << "_init(" << state << "* s, " << work << "* w) MBRT_C_NOEXCEPT;\n"
     << "/* Advances *s by " << N << "_STEP. Allocates nothing, fixed work. On a status\n"
     << " * other than MBRT_STEP_OK *s keeps its old value. */\n"
-    << "mbrt_step_status " << n << "_step(" << state << "* s, " << work << "* w) MBRT_C_NOEXCEPT;\n";
+    << "mbrt_step_status " << n << "_step(" << state << "* s, " << work << "* w) MBRT_C_NOEXCEPT;\n"
+    << (!tree_scheme()            ? "/* Nothing to do here: the step advances s->rigid itself. */\n"
+        : body_states_on_demand() ? "/* Forms s->rigid from the joint coordinates: the step does not\n"
+                                    " * (solver.body_states: on_demand). */\n"
+                                  : "/* Forms s->rigid from the joint coordinates, as the step does. */\n")
+    << "void " << n << "_refresh_bodies(" << state << "* s) MBRT_C_NOEXCEPT;\n";
   if (tree_scheme()) {
     h << "/* Sets s->rigid_acceleration and s->lambda from the joint coordinates (the\n"
       << " * step does not need them; the reactions do). */\n"
@@ -161,7 +166,9 @@ std::vector<GeneratedFile> Emitter::c_interface() const {
     << "  Work* k = new (w) Work;\n  k->s = model::initial_state();\n  copy(k->s, *s);\n}\n\n"
     << "mbrt_step_status " << n << "_step(" << state << "* s, " << work << "* w) noexcept {\n"
     << "  Work& k = work_of(w);\n  copy(*s, k.s);\n  const mbrt::StepStatus status = model::step(k.s, k.w);\n"
-    << "  copy(k.s, *s);\n  return to_c(status);\n}\n\n";
+    << "  copy(k.s, *s);\n  return to_c(status);\n}\n\n"
+    << "void " << n << "_refresh_bodies(" << state << "* s) noexcept {\n"
+    << "  model::State cpp = state_of(*s);\n  model::refresh_bodies(cpp);\n  copy(cpp, *s);\n}\n\n";
   if (tree_scheme()) {
     c << "void " << n << "_set_multipliers(" << state << "* s) noexcept {\n"
       << "  model::State cpp = state_of(*s);\n  model::set_multipliers(cpp);\n  copy(cpp, *s);\n}\n\n";

@@ -74,6 +74,7 @@ std::string Emitter::header() const {
     << "mbrt::StepStatus step(State& s, Workspace& w) noexcept;\n"
     << "// The same with a workspace on the stack, for tools and tests.\n"
     << "mbrt::StepStatus step(State& s) noexcept;\n\n"
+    << refresh_bodies_comment() << "void refresh_bodies(State& s) noexcept;\n\n"
     << worker_declarations()
     << (tree_scheme() ? "// (s) => (s.rigid_acceleration, s.lambda): the body accelerations and\n"
                         "// multipliers that go with the joint coordinates.\n"
@@ -412,7 +413,9 @@ void Emitter::model_members(std::ostringstream& o) const {
                                                    : "")
         << "\n"
         << "static constexpr bool kExternalLoads = " << (tree_external_loads() ? "true" : "false")
-        << ";  // loads other than gravity\n";
+        << ";  // loads other than gravity\n"
+        << "static constexpr bool kBodyStatesEachStep = " << (body_states_on_demand() ? "false" : "true")
+        << ";  // s.rigid formed by every step, else by refresh_bodies()\n";
       friction_constants(o);
       break;
   }
@@ -1150,13 +1153,21 @@ void Emitter::public_functions(std::ostringstream& o) const {
                   : "State initial_state() noexcept { return Model::initial_state(); }\n\n")
     << "mbrt::StepStatus step(State& s, Workspace& w) noexcept {\n  return mbrt::schemes::"
     << step_function() << "<" << (scheme_kind() == Scheme::staggered4 ? "ModelAt<0>, ModelAt<1>" : stepper) << ">(s, w);\n}\n\n"
-    << (tree_scheme() ? "void set_multipliers(State& s) noexcept { Model::set_multipliers(s); }\n\n" : "")
     << "mbrt::StepStatus step(State& s) noexcept {\n  Workspace w;\n  return step(s, w);\n}\n\n"
-    << "mbrt::Energy energy(const State& s) noexcept { return Model::energy(s); }\n\n"
-    << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept { return Model::constraint_violation(s); }\n\n"
-    << "double quaternion_norm_error(const State& s) noexcept { return Model::quaternion_norm_error(s); }\n\n"
-    << "void reactions(const State& s, Reactions& r) noexcept { Model::reactions(s, r); }\n\n"
-    << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept { Model::outputs(s, y); }\n\n" : "")
+    << refresh_bodies_function();
+  // Where the step leaves s.rigid as it was, the tools read a copy of the
+  // state with its bodies' states formed.
+  const std::string read = body_states_on_demand() ? "with_bodies(s)" : "s";
+  if (body_states_on_demand()) o << "static State with_bodies(State s) noexcept {\n  refresh_bodies(s);\n  return s;\n}\n\n";
+  if (tree_scheme()) {
+    o << "void set_multipliers(State& s) noexcept {\n" << (body_states_on_demand() ? "  refresh_bodies(s);\n" : "")
+      << "  Model::set_multipliers(s);\n}\n\n";
+  }
+  o << "mbrt::Energy energy(const State& s) noexcept { return Model::energy(" << read << "); }\n\n"
+    << "mbrt::ConstraintViolation constraint_violation(const State& s) noexcept { return Model::constraint_violation(" << read << "); }\n\n"
+    << "double quaternion_norm_error(const State& s) noexcept { return Model::quaternion_norm_error(" << read << "); }\n\n"
+    << "void reactions(const State& s, Reactions& r) noexcept { Model::reactions(" << read << ", r); }\n\n"
+    << (has_outputs() ? "void outputs(const State& s, Outputs& y) noexcept { Model::outputs(" + read + ", y); }\n\n" : "")
     << worker_functions();
 }
 

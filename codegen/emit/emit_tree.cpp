@@ -229,6 +229,22 @@ std::string Emitter::tree_step_name() const {
 
 bool Emitter::tree_external_loads() const { return !m_.forces.empty() || !m_.inputs.empty(); }
 
+std::string Emitter::refresh_bodies_comment() const {
+  if (!tree_scheme()) return "// Nothing to do here: the step advances s.rigid itself.\n";
+  return body_states_on_demand()
+             ? "// (s.q, s.qd) => (s.rigid): where every body is and how it moves. step()\n"
+               "// does not form s.rigid (solver.body_states: on_demand); call this\n"
+               "// before reading it. The functions below form it themselves.\n"
+             : "// (s.q, s.qd) => (s.rigid): where every body is and how it moves; step()\n"
+               "// does this itself, so only a caller who sets s.q or s.qd needs it.\n";
+}
+
+std::string Emitter::refresh_bodies_function() const {
+  if (!tree_scheme()) return "void refresh_bodies(State&) noexcept {}\n\n";
+  return "void refresh_bodies(State& s) noexcept {\n  HalfAngles ha;\n  Model::half_angles(s.q, ha);\n"
+         "  Model::body_states(s.q, ha, s.qd, s);\n}\n\n";
+}
+
 void Emitter::tree_types(std::ostringstream& o) const {
   o << "inline constexpr int kDofs = " << tree_dofs() << ";  // joint coordinates, in kBodyInfo order\n"
     << "using Dofs = std::array<double, kDofs>;\n"

@@ -364,6 +364,10 @@ class Emitter {
   std::string step_function() const;   // the step's template in include/mbrt/schemes/
   std::string step_header() const;     // and its header there
   bool tree_external_loads() const;
+  // solver.body_states: on_demand (tree schemes only; the analysis checks).
+  bool body_states_on_demand() const { return m_.solver.body_states_on_demand; }
+  std::string refresh_bodies_comment() const;
+  std::string refresh_bodies_function() const;
   void tree_types(std::ostringstream& o) const;  // kDofs, Dofs, HalfAngles
   int tree_dofs() const { return static_cast<int>(a_.tree_frames.frames.size()); }
   void tree_kernels(std::ostringstream& o) const;

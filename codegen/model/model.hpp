@@ -232,6 +232,11 @@ struct SolverSettings {
   std::string parallel_interface = "direct";
   int pcg_iterations = 0;
   std::string pcg_preconditioner = "block";
+  // The tree schemes: form every body's world state (s.rigid) at the end of
+  // each step, or only when refresh_bodies() or a tool asks for it
+  // (docs/staggered-tree.md, "Body states on demand").
+  bool body_states_on_demand = false;
+  SourceLocation body_states_where;
 };
 
 // An entry of the model's `tunable:` list (docs/parameters.md), as written.

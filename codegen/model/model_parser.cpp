@@ -48,7 +48,7 @@ const Keys kMessageFields = {"utime", "seq", "state_utime", "command_seq", "t"};
 const Keys kSolverKeys = {"scheme",        "step",          "euler_updates", "penalty",
                           "stabilization", "baumgarte_alpha", "baumgarte_beta", "corrections",
                           "ali3p",         "parallel_parts", "parallel_min_rows", "parallel_interface",
-                          "pcg_iterations", "pcg_preconditioner"};
+                          "pcg_iterations", "pcg_preconditioner", "body_states"};
 const Keys kAli3pKeys = {"alpha",      "relative_shift",        "alpha_of",   "newton_iterations",
                          "projection", "projection_iterations", "integrator", "rho_inf"};
 
@@ -1355,6 +1355,10 @@ SolverSettings parse_solver(const Value& v) {
   if (auto x = s.find("parallel_interface")) solver.parallel_interface = read_choice(*x, {"direct", "pcg"});
   if (auto x = s.find("pcg_iterations")) solver.pcg_iterations = read_integer_at_least(*x, 1);
   if (auto x = s.find("pcg_preconditioner")) solver.pcg_preconditioner = read_choice(*x, {"block", "diagonal"});
+  if (auto x = s.find("body_states")) {
+    solver.body_states_on_demand = read_choice(*x, {"each_step", "on_demand"}) == "on_demand";
+    solver.body_states_where = x->where;
+  }
   return solver;
 }
 

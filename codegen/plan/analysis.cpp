@@ -778,6 +778,14 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   a.contacts = contact_plans(model, a);
   a.modal = modal_plans(model, a);
   check_absolute_friction(model);
+  if (model.solver.body_states_on_demand && !mbrt::joint_space(model.solver.scheme)) {
+    throw ModelError(model.solver.body_states_where, "solver.body_states",
+                     "on_demand needs a tree scheme (rk4-tree, rk8-tree, midpoint-tree, staggered-tree), whose step "
+                     "advances joint coordinates; the scheme is " + std::string(mbrt::scheme_name(model.solver.scheme)) +
+                         (model.solver.scheme_given ? "" : " (the default for this model: give solver.scheme)") +
+                         ", whose step advances the bodies' states themselves (remove solver.body_states or "
+                         "--body-states)");
+  }
   if (mbrt::joint_space(model.solver.scheme)) {
     a.tree_frames = plan_tree_frames(model, a.constraints);
     if (!a.tree_frames.refusal.empty()) {

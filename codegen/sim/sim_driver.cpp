@@ -204,6 +204,7 @@ int main(int argc, char** argv) {
   const long steps = std::lround(opt.t_end / model::kStep);
   double max_pos = 0.0, max_vel = 0.0, max_acc = 0.0, max_quat = 0.0;
   const auto sample = [&]() {
+    model::refresh_bodies(s);  // where the step leaves them to be formed on demand
     const mbrt::ConstraintViolation v = model::constraint_violation(s);
     max_pos = std::max(max_pos, v.position);
     max_vel = std::max(max_vel, v.velocity);

@@ -144,6 +144,9 @@ mbrt::StepStatus step(State& s, Workspace& w) noexcept;
 // The same with a workspace on the stack, for tools and tests.
 mbrt::StepStatus step(State& s) noexcept;
 
+// Nothing to do here: the step advances s.rigid itself.
+void refresh_bodies(State& s) noexcept;
+
 // The serial step: no worker threads to start (docs/parallel.md).
 inline void start_workers() {}
 inline void stop_workers() noexcept {}

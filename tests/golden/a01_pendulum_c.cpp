@@ -64,6 +64,12 @@ mbrt_step_status a01_pendulum_step(a01_pendulum_state* s, a01_pendulum_work* w) 
   return to_c(status);
 }
 
+void a01_pendulum_refresh_bodies(a01_pendulum_state* s) noexcept {
+  model::State cpp = state_of(*s);
+  model::refresh_bodies(cpp);
+  copy(cpp, *s);
+}
+
 mbrt_energy a01_pendulum_energy(const a01_pendulum_state* s) noexcept { return to_c(model::energy(state_of(*s))); }
 
 mbrt_constraint_violation a01_pendulum_constraint_violation(const a01_pendulum_state* s) noexcept {

@@ -51,6 +51,7 @@ using Dofs = mbrt::models::armature_pendulum::Dofs;
 using HalfAngles = mbrt::models::armature_pendulum::HalfAngles;
 static constexpr int kStages = 1;  // recursions per step
 static constexpr bool kExternalLoads = false;  // loads other than gravity
+static constexpr bool kBodyStatesEachStep = true;  // s.rigid formed by every step, else by refresh_bodies()
 
 static std::array<mbrt::BodyVelocity, kBodies> velocities_of(const State& s) noexcept {
   std::array<mbrt::BodyVelocity, kBodies> vel;
@@ -327,11 +328,19 @@ mbrt::StepStatus step(State& s, Workspace& w) noexcept {
   return mbrt::schemes::tree_step<Model>(s, w);
 }
 
-void set_multipliers(State& s) noexcept { Model::set_multipliers(s); }
-
 mbrt::StepStatus step(State& s) noexcept {
   Workspace w;
   return step(s, w);
+}
+
+void refresh_bodies(State& s) noexcept {
+  HalfAngles ha;
+  Model::half_angles(s.q, ha);
+  Model::body_states(s.q, ha, s.qd, s);
+}
+
+void set_multipliers(State& s) noexcept {
+  Model::set_multipliers(s);
 }
 
 mbrt::Energy energy(const State& s) noexcept { return Model::energy(s); }

@@ -127,6 +127,10 @@ mbrt::StepStatus step(State& s, Workspace& w) noexcept;
 // The same with a workspace on the stack, for tools and tests.
 mbrt::StepStatus step(State& s) noexcept;
 
+// (s.q, s.qd) => (s.rigid): where every body is and how it moves; step()
+// does this itself, so only a caller who sets s.q or s.qd needs it.
+void refresh_bodies(State& s) noexcept;
+
 // The serial step: no worker threads to start (docs/parallel.md).
 inline void start_workers() {}
 inline void stop_workers() noexcept {}

@@ -70,6 +70,12 @@ mbrt_step_status armature_pendulum_step(armature_pendulum_state* s, armature_pen
   return to_c(status);
 }
 
+void armature_pendulum_refresh_bodies(armature_pendulum_state* s) noexcept {
+  model::State cpp = state_of(*s);
+  model::refresh_bodies(cpp);
+  copy(cpp, *s);
+}
+
 void armature_pendulum_set_multipliers(armature_pendulum_state* s) noexcept {
   model::State cpp = state_of(*s);
   model::set_multipliers(cpp);

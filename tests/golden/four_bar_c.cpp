@@ -64,6 +64,12 @@ mbrt_step_status four_bar_step(four_bar_state* s, four_bar_work* w) noexcept {
   return to_c(status);
 }
 
+void four_bar_refresh_bodies(four_bar_state* s) noexcept {
+  model::State cpp = state_of(*s);
+  model::refresh_bodies(cpp);
+  copy(cpp, *s);
+}
+
 mbrt_energy four_bar_energy(const four_bar_state* s) noexcept { return to_c(model::energy(state_of(*s))); }
 
 mbrt_constraint_violation four_bar_constraint_violation(const four_bar_state* s) noexcept {

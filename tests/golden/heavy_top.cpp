@@ -309,6 +309,8 @@ mbrt::StepStatus step(State& s) noexcept {
   return step(s, w);
 }
 
+void refresh_bodies(State&) noexcept {}
+
 mbrt::Energy energy(const State& s) noexcept { return Model::energy(s); }
 
 mbrt::ConstraintViolation constraint_violation(const State& s) noexcept { return Model::constraint_violation(s); }

@@ -64,6 +64,12 @@ mbrt_step_status heavy_top_step(heavy_top_state* s, heavy_top_work* w) noexcept 
   return to_c(status);
 }
 
+void heavy_top_refresh_bodies(heavy_top_state* s) noexcept {
+  model::State cpp = state_of(*s);
+  model::refresh_bodies(cpp);
+  copy(cpp, *s);
+}
+
 mbrt_energy heavy_top_energy(const heavy_top_state* s) noexcept { return to_c(model::energy(state_of(*s))); }
 
 mbrt_constraint_violation heavy_top_constraint_violation(const heavy_top_state* s) noexcept {

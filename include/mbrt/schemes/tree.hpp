@@ -18,7 +18,8 @@
 //   types     State (t, q, qd, qdd, rigid, ...), Workspace (with
 //             stage_rates and stage_accelerations, kStages Dofs each, for
 //             the Runge-Kutta steps), Dofs, HalfAngles;
-//   constants kStep, kStages (recursions per step), kExternalLoads;
+//   constants kStep, kStages (recursions per step), kExternalLoads,
+//             kBodyStatesEachStep;
 //   kernels   half_angles, body_states, kinematics, tree_loads,
 //             joint_accelerations;
 // and, where joints have friction, what joint_friction.hpp needs: each step
@@ -40,13 +41,27 @@ namespace mbrt::schemes {
 
 // The joint coordinates decide everything else (the rates after the last
 // kick carry the accelerations); a body's velocity is where finite rates
-// could still overflow.
-template <class State>
-bool tree_state_finite(const State& s) noexcept {
+// could still overflow. Where the step does not form the bodies' states
+// (M::kBodyStatesEachStep false), the accelerations stand in for them.
+template <class M>
+bool tree_state_finite(const typename M::State& s) noexcept {
   double sum = 0.0;
   for (std::size_t i = 0; i < s.q.size(); ++i) sum += s.q[i] + s.qd[i];
-  for (const RigidState& b : s.rigid) sum += b.v.sum();
+  if constexpr (M::kBodyStatesEachStep) {
+    for (const RigidState& b : s.rigid) sum += b.v.sum();
+  } else {
+    for (const double a : s.qdd) sum += a;
+  }
   return std::isfinite(sum);
+}
+
+// The bodies' states at the step's end, s.rigid, unless the model forms
+// them only on request (solver.body_states: on_demand, refresh_bodies());
+// then s.rigid after a step is not the new state's (where loads need them,
+// a stage's).
+template <class M>
+void tree_body_states(typename M::State& s, typename M::Workspace& w) noexcept {
+  if constexpr (M::kBodyStatesEachStep) M::body_states(s.q, w.half_angles, s.qd, s);
 }
 
 // A step's first act: save what tree_step_end restores.
@@ -62,11 +77,12 @@ void tree_step_begin(const typename M::State& s, typename M::Workspace& w) noexc
 // one the step began from (saved in w by tree_step_begin).
 template <class M>
 StepStatus tree_step_end(typename M::State& s, typename M::Workspace& w) noexcept {
-  if (tree_state_finite(s)) return StepStatus::ok;
+  if (tree_state_finite<M>(s)) return StepStatus::ok;
   s.t = w.t0;
   s.q = w.q0;
   s.qd = w.qd0;
   s.qdd = w.qdd0;
+  // The bodies too, even on demand: a stage may have left non-finite ones.
   M::half_angles(s.q, w.half_angles);
   M::body_states(s.q, w.half_angles, s.qd, s);
   return StepStatus::non_finite;
@@ -113,7 +129,7 @@ StepStatus tree_step(typename M::State& s, typename M::Workspace& w) noexcept {
   }
   for (std::size_t i = 0; i < s.q.size(); ++i) s.qd[i] += (0.5 * h) * s.qdd[i];
   tree_friction<M>(s, w);
-  M::body_states(s.q, w.half_angles, s.qd, s);
+  tree_body_states<M>(s, w);
   return tree_step_end<M>(s, w);
 }
 
@@ -150,7 +166,7 @@ StepStatus tree_midpoint_step(typename M::State& s, typename M::Workspace& w) no
   s.t = w.t0 + h;
   M::half_angles(s.q, w.half_angles);
   tree_friction<M>(s, w);
-  M::body_states(s.q, w.half_angles, s.qd, s);
+  tree_body_states<M>(s, w);
   return tree_step_end<M>(s, w);
 }
 
@@ -222,7 +238,7 @@ StepStatus tree_runge_kutta_step(typename M::State& s, typename M::Workspace& w)
   s.t = w.t0 + M::kStep;
   M::half_angles(s.q, w.half_angles);
   tree_friction<M>(s, w);
-  M::body_states(s.q, w.half_angles, s.qd, s);
+  tree_body_states<M>(s, w);
   return tree_step_end<M>(s, w);
 }
 
