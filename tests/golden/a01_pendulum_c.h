@@ -56,8 +56,7 @@ void a01_pendulum_init(a01_pendulum_state* s, a01_pendulum_work* w) MBRT_C_NOEXC
 /* Advances *s by A01_PENDULUM_STEP. Allocates nothing, fixed work. On a status
  * other than MBRT_STEP_OK *s keeps its old value. */
 mbrt_step_status a01_pendulum_step(a01_pendulum_state* s, a01_pendulum_work* w) MBRT_C_NOEXCEPT;
-/* Forms s->rigid from the joint coordinates (tree schemes; the step does so
- * itself unless the model's solver.body_states is on_demand). */
+/* Nothing to do here: the step advances s->rigid itself. */
 void a01_pendulum_refresh_bodies(a01_pendulum_state* s) MBRT_C_NOEXCEPT;
 mbrt_energy a01_pendulum_energy(const a01_pendulum_state* s) MBRT_C_NOEXCEPT;
 mbrt_constraint_violation a01_pendulum_constraint_violation(const a01_pendulum_state* s) MBRT_C_NOEXCEPT;

@@ -65,8 +65,7 @@ void armature_pendulum_init(armature_pendulum_state* s, armature_pendulum_work* 
 /* Advances *s by ARMATURE_PENDULUM_STEP. Allocates nothing, fixed work. On a status
  * other than MBRT_STEP_OK *s keeps its old value. */
 mbrt_step_status armature_pendulum_step(armature_pendulum_state* s, armature_pendulum_work* w) MBRT_C_NOEXCEPT;
-/* Forms s->rigid from the joint coordinates (tree schemes; the step does so
- * itself unless the model's solver.body_states is on_demand). */
+/* Forms s->rigid from the joint coordinates, as the step does. */
 void armature_pendulum_refresh_bodies(armature_pendulum_state* s) MBRT_C_NOEXCEPT;
 /* Sets s->rigid_acceleration and s->lambda from the joint coordinates (the
  * step does not need them; the reactions do). */

@@ -64,8 +64,7 @@ void four_bar_init(four_bar_state* s, four_bar_work* w) MBRT_C_NOEXCEPT;
 /* Advances *s by FOUR_BAR_STEP. Allocates nothing, fixed work. On a status
  * other than MBRT_STEP_OK *s keeps its old value. */
 mbrt_step_status four_bar_step(four_bar_state* s, four_bar_work* w) MBRT_C_NOEXCEPT;
-/* Forms s->rigid from the joint coordinates (tree schemes; the step does so
- * itself unless the model's solver.body_states is on_demand). */
+/* Nothing to do here: the step advances s->rigid itself. */
 void four_bar_refresh_bodies(four_bar_state* s) MBRT_C_NOEXCEPT;
 mbrt_energy four_bar_energy(const four_bar_state* s) MBRT_C_NOEXCEPT;
 mbrt_constraint_violation four_bar_constraint_violation(const four_bar_state* s) MBRT_C_NOEXCEPT;

@@ -57,8 +57,7 @@ void heavy_top_init(heavy_top_state* s, heavy_top_work* w) MBRT_C_NOEXCEPT;
 /* Advances *s by HEAVY_TOP_STEP. Allocates nothing, fixed work. On a status
  * other than MBRT_STEP_OK *s keeps its old value. */
 mbrt_step_status heavy_top_step(heavy_top_state* s, heavy_top_work* w) MBRT_C_NOEXCEPT;
-/* Forms s->rigid from the joint coordinates (tree schemes; the step does so
- * itself unless the model's solver.body_states is on_demand). */
+/* Nothing to do here: the step advances s->rigid itself. */
 void heavy_top_refresh_bodies(heavy_top_state* s) MBRT_C_NOEXCEPT;
 mbrt_energy heavy_top_energy(const heavy_top_state* s) MBRT_C_NOEXCEPT;
 mbrt_constraint_violation heavy_top_constraint_violation(const heavy_top_state* s) MBRT_C_NOEXCEPT;
