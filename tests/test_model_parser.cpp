@@ -381,7 +381,7 @@ solver:
   stepsize: 0.001
 )",
                     "solver.stepsize", 6,
-                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization, baumgarte_alpha, baumgarte_beta, corrections, ali3p, parallel_parts, parallel_min_rows, parallel_interface, pcg_iterations, pcg_preconditioner)");
+                    "unknown key 'stepsize' (expected one of: scheme, step, euler_updates, penalty, stabilization, baumgarte_alpha, baumgarte_beta, corrections, ali3p, parallel_parts, parallel_min_rows, parallel_interface, pcg_iterations, pcg_preconditioner, body_states)");
 }
 
 TEST_CASE("a key given twice in one map is rejected naming the first") {
