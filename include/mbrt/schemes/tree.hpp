@@ -64,6 +64,16 @@ void tree_body_states(typename M::State& s, typename M::Workspace& w) noexcept {
   if constexpr (M::kBodyStatesEachStep) M::body_states(s.q, w.half_angles, s.qd, s);
 }
 
+// The end of a step whose last recursion ran at other joint coordinates:
+// the half angles of the final q, which only the friction impulses and the
+// bodies' states turn frames by, then those two.
+template <class M>
+void tree_step_close(typename M::State& s, typename M::Workspace& w) noexcept {
+  if constexpr (M::kBodyStatesEachStep || kFrictionJointsOf<M> > 0) M::half_angles(s.q, w.half_angles);
+  tree_friction<M>(s, w);
+  tree_body_states<M>(s, w);
+}
+
 // A step's first act: save what tree_step_end restores.
 template <class M>
 void tree_step_begin(const typename M::State& s, typename M::Workspace& w) noexcept {
@@ -164,9 +174,7 @@ StepStatus tree_midpoint_step(typename M::State& s, typename M::Workspace& w) no
     s.qd[i] = w.qd0[i] + h * s.qdd[i];
   }
   s.t = w.t0 + h;
-  M::half_angles(s.q, w.half_angles);
-  tree_friction<M>(s, w);
-  tree_body_states<M>(s, w);
+  tree_step_close<M>(s, w);
   return tree_step_end<M>(s, w);
 }
 
@@ -236,9 +244,7 @@ StepStatus tree_runge_kutta_step(typename M::State& s, typename M::Workspace& w)
     s.qd[i] = tree_detail::step_end<M, Tableau>(w.qd0[i], w.stage_accelerations, i, stages);
   }
   s.t = w.t0 + M::kStep;
-  M::half_angles(s.q, w.half_angles);
-  tree_friction<M>(s, w);
-  tree_body_states<M>(s, w);
+  tree_step_close<M>(s, w);
   return tree_step_end<M>(s, w);
 }
 
