@@ -23,12 +23,12 @@ struct Run {
   std::string err;
 };
 
-// Runs `mbrt ARGS` with a private compile cache.
+// Runs `mbrt ARGS` with the tests' compile cache.
 Run mbrt(const std::string& args) {
   const fs::path dir = fs::path(MBRT_TEST_WORK_DIR);
   fs::create_directories(dir);
   const std::string err_file = (dir / "stderr.txt").string();
-  const std::string cmd = "MBRT_CACHE_DIR='" + (dir / "cache").string() + "' '" + MBRT_EXE + "' " + args + " 2>'" +
+  const std::string cmd = std::string("MBRT_CACHE_DIR='" MBRT_TEST_PROGRAM_CACHE "' '") + MBRT_EXE + "' " + args + " 2>'" +
                           err_file + "'";
   const CommandRun c = run_shell(cmd);
   Run r{c.exit_code, c.out, ""};

@@ -40,7 +40,7 @@ constexpr double kEnergyTol = 1e-9;     // J, relative to the energy's magnitude
 using Run = CommandRun;
 
 Run mbrt(const std::string& args) {
-  return run_shell("MBRT_CACHE_DIR='" + (fs::path(MBRT_TEST_WORK_DIR) / "cache").string() + "' '" + MBRT_EXE + "' " +
+  return run_shell(std::string("MBRT_CACHE_DIR='" MBRT_TEST_PROGRAM_CACHE "' '") + MBRT_EXE + "' " +
                    args);
 }
 

@@ -5,19 +5,24 @@
 // and by its modes) and a two-element cantilever settle at the closed-form
 // static displacements and slopes; free structures (of nodes with mass, and
 // with inertia that turns) keep their energy (summed over the nodes with the
-// file's stiffness), momentum and angular momentum; the generator's messages on bad files, and its warning
-// where a structure without geometric stiffness could spin too fast.
+// file's stiffness), momentum and angular momentum; a spinning cantilever
+// with the file's geometric stiffness swings out of its plane of rotation at
+// the published frequencies; the generator's messages on bad files, and its
+// warning where a structure without geometric stiffness could spin too fast.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "analysis.hpp"
@@ -27,6 +32,7 @@
 #include "modal_file_loads.hpp"
 #include "modal_file_loads_blajer.hpp"
 #include "modal_momenta.hpp"
+#include "modal_spinning_file.hpp"
 #include "model.hpp"
 #include "stable_step.hpp"
 
@@ -284,6 +290,119 @@ TEST_CASE("free structures from data files keep their energy, momentum and angul
   CHECK(coarse.largest_q > 1e-3);  // the spin does stretch it
 }
 
+// The first out-of-plane frequency of a uniform cantilever spinning about an
+// axis through its root, omega / sqrt(EI / (rho_A L^4)), at spin rates
+// Omega / sqrt(EI / (rho_A L^4)) = 0 to 5: Wright, Smith, Thresher & Wang
+// 1982, "Vibration modes of centrifugally stiffened beams", J. Applied
+// Mechanics 49(1), table 1 (Southwell's coefficient about 1.19 at low spin).
+constexpr std::array<double, 6> kSpinningFlapFrequency = {3.5160, 3.6816, 4.1373, 4.7973, 5.5850, 6.4495};
+
+TEST_CASE("a cantilever from a data file with its geometric stiffness stiffens with spin at the published rate") {
+  // modal_data/spinning_beam.yaml: 12 elements, EI 10 N m^2, rho_A 1 kg/m,
+  // L 1 m; its spin cases are about the root, its frame at the middle.
+  const double unit = std::sqrt(10.0);
+  const cg::Model m = cg::parse_model("name: spinning\nbodies:\n  - name: beam\n    flexible: {file: modal_data/spinning_beam.yaml, modes: 4}\n",
+                                      kModels + "/inline.yaml");
+  const cg::ModalPlan p = cg::plan_modal(m.modal[0]);
+  REQUIRE(m.modal[0].structure->spin_stiffens());
+  const double centre = m.modal[0].structure->centre.x();
+  CHECK(centre == doctest::Approx(0.5));
+  for (size_t k = 0; k < kSpinningFlapFrequency.size(); ++k) {
+    // Spun at Omega about z through the root, the frame (at the middle)
+    // accelerates by -Omega^2 centre along x.
+    const double spin = static_cast<double>(k) * unit;
+    const Eigen::MatrixXd K = Eigen::MatrixXd(p.omega.cwiseAbs2().asDiagonal()) + spin * spin * p.kg[cg::kSpinZZ] -
+                              spin * spin * centre * p.kg[cg::kAccelerationX];
+    const double lowest = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K).eigenvalues()[0]) / unit;
+    MESSAGE("spin " << k << ": " << lowest << " (published " << kSpinningFlapFrequency[k] << ")");
+    CHECK(lowest == doctest::Approx(kSpinningFlapFrequency[k]).epsilon(0.005));
+  }
+  // Beside it, the same beam spun about y: the yy case alike.
+  CHECK((p.kg[cg::kSpinYY] - p.kg[cg::kSpinZZ]).norm() < 1e-9 * p.kg[cg::kSpinZZ].norm());
+}
+
+TEST_CASE("a file's spin cases, moved to the frame, give the stiffness of a spin about the file's origin with the frame's acceleration") {
+  // Three point masses in a triangle off every axis (the first clamped),
+  // springs between them, and nine arbitrary symmetric load cases. Spun at
+  // w about the file's origin, the frame (the nodes' centre c) accelerates
+  // by w x (w x c): the step's sum over the cases at that spin and
+  // acceleration is the file's spin cases at w, projected on the modes.
+  cg::ModalStructure s;
+  s.file = "triangle";
+  s.coordinates = 3;
+  s.nodes = {{"a", {0.3, -0.2, 0.5}, 1.0, {}}, {"b", {1.1, 0.4, 0.2}, 2.0, {}}, {"c", {0.6, 0.9, -0.4}, 1.5, {}}};
+  s.clamped = {0};
+  for (const cg::ModalNodeData& d : s.nodes) s.centre += d.mass * d.position / 4.5;
+  const auto spring = [](const Eigen::Vector3d& x1, const Eigen::Vector3d& x2, double k) {
+    const Eigen::Vector3d e = (x2 - x1).normalized();
+    return Eigen::Matrix3d(k * e * e.transpose());
+  };
+  s.stiffness = Eigen::MatrixXd::Zero(9, 9);
+  const std::array<std::array<int, 2>, 3> ties = {{{0, 1}, {1, 2}, {0, 2}}};
+  for (const auto& [i, j] : ties) {
+    const Eigen::Matrix3d k = spring(s.nodes[static_cast<size_t>(i)].position, s.nodes[static_cast<size_t>(j)].position, 1000.0);
+    s.stiffness.block<3, 3>(3 * i, 3 * i) += k, s.stiffness.block<3, 3>(3 * j, 3 * j) += k;
+    s.stiffness.block<3, 3>(3 * i, 3 * j) -= k, s.stiffness.block<3, 3>(3 * j, 3 * i) -= k;
+  }
+  // Out of the plane the triangle needs a hold: a soft spring to ground at b and c.
+  s.stiffness.diagonal().tail<6>().array() += 50.0;
+  std::srand(11);
+  for (Eigen::MatrixXd& g : s.geometric_stiffness) {
+    const Eigen::MatrixXd r = Eigen::MatrixXd::Random(9, 9);
+    g = r + r.transpose();
+  }
+  const cg::ModalPlan p = cg::plan_modal_structure(s, 6, 0.0);
+  Eigen::MatrixXd shapes(9, 6);  // over the file's 3 coordinates a node
+  for (int k = 0; k < 3; ++k) shapes.middleRows(3 * k, 3) = p.shapes.middleRows(6 * k, 3);
+  for (const Eigen::Vector3d& w : {Eigen::Vector3d(0.3, -1.2, 2.0), Eigen::Vector3d(-2.5, 0.7, 0.4)}) {
+    const std::array<double, 6> products = {w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.x() * w.z(), w.y() * w.z()};
+    const Eigen::Vector3d a = w.cross(w.cross(s.centre));
+    Eigen::MatrixXd step = Eigen::MatrixXd::Zero(6, 6), about_origin = step;
+    for (size_t k = 0; k < 6; ++k) {
+      step += products[k] * p.kg[k];
+      about_origin += products[k] * shapes.transpose() * s.geometric_stiffness[k] * shapes;
+    }
+    for (size_t i = 0; i < 3; ++i) step += a[static_cast<Eigen::Index>(i)] * p.kg[cg::kAccelerationX + i];
+    CHECK((step - about_origin).norm() < 1e-10 * about_origin.norm());
+  }
+  // Without spin cases nothing is moved: acceleration cases alone give no spin terms.
+  for (size_t k = 0; k < 6; ++k) s.geometric_stiffness[k].resize(0, 0);
+  const cg::ModalPlan accelerating = cg::plan_modal_structure(s, 6, 0.0);
+  for (size_t k = 0; k < 6; ++k) CHECK(accelerating.kg[k].isZero(0.0));
+  CHECK(!accelerating.kg[cg::kAccelerationX].isZero(0.0));
+}
+
+TEST_CASE("spinning cantilevers from a data file swing out of their plane of rotation at the published frequency at 1 kHz") {
+  // tests/models/modal_spinning_file.yaml: hubs driven at 3 sqrt(EI / (rho_A L^4))
+  // about z and about y; a tip force normal to each plane of rotation.
+  namespace m = mbrt::models::modal_spinning_file;
+  const double unit = std::sqrt(10.0);
+  m::State s = m::initial_state();
+  m::Outputs y{};
+  std::array<std::vector<double>, 2> swing;
+  for (int i = 0; i < 6000; ++i) {  // 6 s, about 14 periods
+    REQUIRE(m::step(s) == mbrt::StepStatus::ok);
+    m::outputs(s, y);
+    swing[0].push_back(y[m::output::tip_z + 2]);
+    swing[1].push_back(y[m::output::tip_y + 1]);
+  }
+  for (const std::vector<double>& x : swing) {
+    double mean = 0;
+    for (const double v : x) mean += v / static_cast<double>(x.size());
+    std::vector<double> up;
+    for (size_t i = 1; i < x.size(); ++i) {
+      if (x[i - 1] < mean && x[i] >= mean) up.push_back(static_cast<double>(i) * m::kStep);
+    }
+    REQUIRE(up.size() > 10);
+    const double period = (up.back() - up.front()) / static_cast<double>(up.size() - 1);
+    const double frequency = 2 * M_PI / period / unit;
+    MESSAGE("out of plane: " << frequency << " sqrt(EI / (rho_A L^4)) (published " << kSpinningFlapFrequency[3] << ", not spinning "
+                             << kSpinningFlapFrequency[0] << "), tip between " << *std::min_element(x.begin(), x.end()) << " and "
+                             << *std::max_element(x.begin(), x.end()) << " m");
+    CHECK(frequency == doctest::Approx(kSpinningFlapFrequency[3]).epsilon(0.005));
+  }
+}
+
 TEST_CASE("the generator names the data file, its line and what is wrong") {
   const std::string body = "name: bad\nbodies:\n  - name: part\n    flexible: {file: ";
   const auto with_file = [&](const std::string& name, const std::string& text) {
@@ -339,6 +458,14 @@ TEST_CASE("the generator names the data file, its line and what is wrong") {
   CHECK(with_file("skew.yaml", nodes + "clamped: [root]\nstiffness:\n" + skewed).find("stiffness: not symmetric: row 6, column 0 is -100, row 0, column 6 is -90") !=
         std::string::npos);
 
+  CHECK(with_file("geometric.yaml", nodes + "clamped: [root, base]\nstiffness:\n" + rows + "geometric_stiffness:\n  spin_zz:\n" + rows) == "");
+  CHECK(with_file("geometric_case.yaml", nodes + "clamped: [root]\nstiffness:\n" + rows + "geometric_stiffness:\n  spin_z:\n" + rows)
+            .find("geometric_stiffness.spin_z: unknown key 'spin_z' (expected one of: spin_xx, spin_yy, spin_zz") != std::string::npos);
+  const std::string skewed_case = with_file("geometric_skew.yaml", nodes + "clamped: [root]\nstiffness:\n" + rows +
+                                                                       "geometric_stiffness:\n  acceleration_x:\n" + skewed);
+  CHECK(skewed_case.find("mbrt_test_modal_file_geometric_skew.yaml:") != std::string::npos);
+  CHECK(skewed_case.find("geometric_stiffness.acceleration_x: not symmetric: row 6, column 0 is -100, row 0, column 6 is -90") !=
+        std::string::npos);
   CHECK(with_file("clamp.yaml", nodes + "clamped: [tip]\nstiffness:\n" + rows).find("clamped[0]: unknown node 'tip'") !=
         std::string::npos);
   // Unclamped, the chain's springs (each along one direction) resist a rigid
@@ -395,4 +522,18 @@ TEST_CASE("the generator warns where a structure from a file could spin near its
   const std::string fast = warning(30.0);
   CHECK(fast.find("modal body truss (from " + kModels + "/modal_data/octahedron.yaml) has no geometric stiffness") != std::string::npos);
   CHECK(fast.find("could turn at 30.3 rad/s, 0.429 of its lowest mode's 70.7 rad/s") != std::string::npos);
+  // A file with the geometric stiffness of spin stiffens: no warning, at
+  // nine times its lowest frequency.
+  const cg::Model stiffened = cg::parse_model("name: spinning\nbodies:\n  - name: beam\n    flexible: {file: modal_data/spinning_beam.yaml, "
+                                              "modes: 4}\n    angular_velocity: [0, 0, 100]\n",
+                                              kModels + "/inline.yaml");
+  CHECK(cg::modal_spin_warning(stiffened, cg::estimate_stable_step(stiffened)) == "");
+  // The same beam without it is warned of.
+  std::ifstream in(kModels + "/modal_data/spinning_beam.yaml");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const TemporaryFile plain("plain_beam.yaml", text.substr(0, text.find("geometric_stiffness:")));
+  const cg::Model soft = cg::parse_model("name: spinning\nbodies:\n  - name: beam\n    flexible: {file: " + plain.path.string() +
+                                         ", modes: 4}\n    angular_velocity: [0, 0, 100]\n",
+                                         kModels + "/inline.yaml");
+  CHECK(cg::modal_spin_warning(soft, cg::estimate_stable_step(soft)).find("has no geometric stiffness of spin") != std::string::npos);
 }

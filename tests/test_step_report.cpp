@@ -22,7 +22,7 @@ namespace {
 nlohmann::json run(const std::string& args) {
   const fs::path dir = fs::path(MBRT_TEST_WORK_DIR);
   fs::create_directories(dir);
-  const std::string cmd = "MBRT_CACHE_DIR='" + (dir / "cache").string() + "' '" + MBRT_EXE + "' " + args +
+  const std::string cmd = std::string("MBRT_CACHE_DIR='" MBRT_TEST_PROGRAM_CACHE "' '") + MBRT_EXE + "' " + args +
                           " -o '" + (dir / "gen").string() + "' 2>/dev/null";
   const CommandRun r = run_shell(cmd);
   REQUIRE(r.exit_code == 0);

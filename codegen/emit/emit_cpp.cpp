@@ -140,7 +140,7 @@ std::vector<StateField> Emitter::state_fields() const {
     f.push_back({"  // Modal bodies by modal:: index (docs/flexible.md), their first N entries:\n"
                  "  // modal coordinates q, momenta p = qdot + St^T R^T v + Sr(q)^T w, and dp/dt at t.\n"
                  "  std::array<mbrt::Vec6, kModalBodies> modal_q, modal_p, modal_rate;\n"
-                 "  // The frame's acceleration at t in its own axes, for the axial geometric\n"
+                 "  // The frame's acceleration at t in its own axes, for the geometric\n"
                  "  // stiffness (in body axes it does not turn with a spinning frame).\n"
                  "  std::array<mbrt::Vec3, kModalBodies> modal_frame_acceleration;\n",
                  "modal_q", "double", "MODAL_BODIES", "[6]", nm});

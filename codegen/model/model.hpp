@@ -3,6 +3,7 @@
 // axes are derived later by the analysis.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -287,7 +288,22 @@ struct ModalStructure {
   Eigen::VectorXd frequencies;   // given modes: rad/s, ascending
   Eigen::MatrixXd shapes;        // given modes: coordinates * nodes x modes
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // the nodes' centre of mass: the frame's origin
+  // Geometric stiffness per load case, over the file's coordinates (empty:
+  // not given), cases as kGeometricStiffnessCases names them.
+  std::array<Eigen::MatrixXd, 9> geometric_stiffness;
+  bool spin_stiffens() const {
+    for (int k = 0; k < 6; ++k) {
+      if (geometric_stiffness[static_cast<size_t>(k)].size() > 0) return true;
+    }
+    return false;
+  }
 };
+
+// A structure's geometric stiffness load cases (docs/flexible.md): per
+// w_a w_b of a spin about the file's origin, then per m/s^2 of its
+// acceleration along its axes. The step's order (include/mbrt/modal_body.hpp).
+inline constexpr std::array<const char*, 9> kGeometricStiffnessCases = {
+    "spin_xx", "spin_yy", "spin_zz", "spin_xy", "spin_xz", "spin_yz", "acceleration_x", "acceleration_y", "acceleration_z"};
 
 // A flexible body as a modal body (docs/flexible.md): the body `body` is the
 // frame (the undeformed body's centre of mass), carrying `modes` modes of

@@ -35,7 +35,7 @@ const Keys kFlexibleBodyKeys = {"name", "flexible", "position", "orientation", "
 const Keys kBeamKeys = {"length", "elements", "EA", "GA", "GJ", "EI", "rho_A", "rho_J", "damping", "modes"};
 // A modal body from a file (docs/flexible.md, "Modal data from a file").
 const Keys kModalFileBodyKeys = {"file", "modes", "damping_ratio"};
-const Keys kModalFileKeys = {"coordinates", "nodes", "clamped", "stiffness", "modes"};
+const Keys kModalFileKeys = {"coordinates", "nodes", "clamped", "stiffness", "modes", "geometric_stiffness"};
 const Keys kModalFileNodeKeys = {"name", "position", "mass", "inertia"};
 const Keys kModalFileModeKeys = {"frequency", "shape"};
 const Keys kRotationalKeys = {"inertia", "orientation", "angular_velocity"};  // not for particles
@@ -554,6 +554,22 @@ std::pair<double, double> read_pair(const Value& v) {
   return {read_positive(element(v, 0)), read_positive(element(v, 1))};
 }
 
+// A square, symmetric matrix over a structure's n coordinates (c a node),
+// row by row.
+Eigen::MatrixXd read_symmetric_matrix(const Value& v, std::size_t n, int c) {
+  const std::string row_size = "a row of " + std::to_string(n) + " numbers (" + std::to_string(c) + " per node)";
+  if (!v.node.IsSequence() || v.node.size() != n) fail_expected(v, std::to_string(n) + " rows");
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) m.row(static_cast<Eigen::Index>(i)) = read_numbers(element(v, i), {n}, row_size).transpose();
+  const double largest = m.cwiseAbs().maxCoeff();
+  Eigen::Index i = 0, j = 0;
+  if ((m - m.transpose()).cwiseAbs().maxCoeff(&i, &j) > 1e-9 * largest) {
+    fail(v, "not symmetric: row " + std::to_string(i) + ", column " + std::to_string(j) + " is " + format_number(m(i, j)) +
+                ", row " + std::to_string(j) + ", column " + std::to_string(i) + " is " + format_number(m(j, i)));
+  }
+  return m;
+}
+
 // A modal body's structure from its data file (docs/flexible.md, "Modal data
 // from a file"); `v` is the model's `file:` entry, a path from the model
 // file's directory. Messages name the data file, its line and key.
@@ -622,18 +638,15 @@ ModalStructure read_modal_structure(const Value& v, const std::string& model_fil
                   std::string(stiffness ? "both" : "neither"));
   }
   const std::size_t n = static_cast<std::size_t>(c) * out.nodes.size();
-  if (stiffness) {
-    const std::string row_size = "a row of " + std::to_string(n) + " numbers (" + std::to_string(c) + " per node)";
-    if (!stiffness->node.IsSequence() || stiffness->node.size() != n) fail_expected(*stiffness, std::to_string(n) + " rows");
-    out.stiffness.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-    for (std::size_t i = 0; i < n; ++i) out.stiffness.row(static_cast<Eigen::Index>(i)) = read_numbers(element(*stiffness, i), {n}, row_size).transpose();
-    const double largest = out.stiffness.cwiseAbs().maxCoeff();
-    Eigen::Index i = 0, j = 0;
-    if ((out.stiffness - out.stiffness.transpose()).cwiseAbs().maxCoeff(&i, &j) > 1e-9 * largest) {
-      fail(*stiffness, "not symmetric: row " + std::to_string(i) + ", column " + std::to_string(j) + " is " +
-                           format_number(out.stiffness(i, j)) + ", row " + std::to_string(j) + ", column " + std::to_string(i) +
-                           " is " + format_number(out.stiffness(j, i)));
+  if (auto geometric = s.find("geometric_stiffness")) {
+    const Keys cases(kGeometricStiffnessCases.begin(), kGeometricStiffnessCases.end());
+    const Section g(*geometric, cases);
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      if (auto m = g.find(cases[k])) out.geometric_stiffness[k] = read_symmetric_matrix(*m, n, c);
     }
+  }
+  if (stiffness) {
+    out.stiffness = read_symmetric_matrix(*stiffness, n, c);
     return out;
   }
   if (!modes->node.IsSequence() || modes->node.size() < 1) fail_expected(*modes, "a list of modes");

@@ -89,7 +89,7 @@ void sum_invariants(ModalPlan& p, const std::vector<MassPoint>& points) {
     for (const auto& m : list) x = std::max(x, m.cwiseAbs().maxCoeff());
     return x;
   };
-  zero_round_off(p.kg_spin, p.kg_spin.cwiseAbs().maxCoeff()), zero_round_off(p.kg_axial, p.kg_axial.cwiseAbs().maxCoeff());
+  for (auto& k : p.kg) zero_round_off(k, k.cwiseAbs().maxCoeff());
   zero_round_off(p.reduced_inverse, p.reduced_inverse.cwiseAbs().maxCoeff());
   const double e = largest(p.E), g = largest(p.G);
   for (auto& m : p.E) zero_round_off(m, e);
@@ -160,14 +160,16 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   p.clamped = {0};
 
   // Geometric stiffness: the axial force rho_A ((L^2 - x^2) / 2 - centre (L - x))
-  // per unit (w_y^2 + w_z^2) about the centre, rho_A (L - x) per unit axial
-  // acceleration towards the root (beam_modes' hub radius -centre, and 1 less 0).
+  // per unit w_y^2 and w_z^2 about the centre, and -rho_A (L - x) per unit
+  // acceleration along x, away from the root (beam_modes' hub radius
+  // -centre, and 0 less 1).
   const auto projected = [&](double hub_radius) {
     const BeamMatrices m = assemble_beam(beam, hub_radius);
     return Eigen::MatrixXd(shapes.transpose() * m.KG * shapes);
   };
-  p.kg_spin = projected(-centre);
-  p.kg_axial = projected(1.0) - projected(0.0);
+  for (auto& k : p.kg) k = Eigen::MatrixXd::Zero(modes, modes);
+  p.kg[kSpinYY] = p.kg[kSpinZZ] = projected(-centre);
+  p.kg[kAccelerationX] = projected(0.0) - projected(1.0);
 
   // The invariants over the beam's mass, positions rho0 = (x - L/2, 0, 0).
   const BeamField f = beam_field(beam, shapes);
@@ -176,6 +178,40 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   sum_invariants(p, points);
   return p;
 }
+
+namespace {
+
+// A structure's geometric stiffness on its modes (shapes over the file's
+// coordinates): each given case projected, the spin cases (where the file
+// gives any) moved from the file's origin to the frame's, the nodes' centre
+// c. Spinning about the origin loads the structure as spinning about c and
+// accelerating by w x (w x c), whose products w_a w_b take c's part normal
+// to a (negated) along the axes for a = b, and c_b along a plus c_a along b
+// otherwise.
+std::array<Eigen::MatrixXd, 9> structure_geometric_stiffness(const ModalStructure& s, const Eigen::MatrixXd& shapes) {
+  std::array<Eigen::MatrixXd, 9> kg;
+  for (size_t k = 0; k < kg.size(); ++k) {
+    const Eigen::MatrixXd& g = s.geometric_stiffness[k];
+    kg[k] = g.size() > 0 ? Eigen::MatrixXd(shapes.transpose() * g * shapes) : Eigen::MatrixXd::Zero(shapes.cols(), shapes.cols());
+  }
+  if (!s.spin_stiffens()) return kg;
+  const Eigen::Vector3d& c = s.centre;
+  const int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+  for (size_t k = 0; k < 6; ++k) {
+    const int a = pairs[k][0], b = pairs[k][1];
+    Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();  // per unit w_a w_b
+    if (a == b) {
+      acceleration = -c;
+      acceleration[a] = 0;
+    } else {
+      acceleration[a] = c[b], acceleration[b] = c[a];
+    }
+    for (int i = 0; i < 3; ++i) kg[k] -= acceleration[i] * kg[static_cast<size_t>(kAccelerationX + i)];
+  }
+  return kg;
+}
+
+}  // namespace
 
 ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double damping_ratio) {
   const int c = s.coordinates, nodes = static_cast<int>(s.nodes.size()), n = c * nodes;
@@ -338,7 +374,7 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
     }
     points.push_back({-total, x, u});
   }
-  p.kg_spin = p.kg_axial = Eigen::MatrixXd::Zero(modes, modes);
+  p.kg = structure_geometric_stiffness(s, shapes);
   sum_invariants(p, points);
   return p;
 }

@@ -17,6 +17,8 @@
 
 namespace mbrt::codegen {
 
+inline constexpr size_t kSpinYY = 1, kSpinZZ = 2, kAccelerationX = 6;  // ModalPlan::kg's cases
+
 struct ModalPlan {
   int body = -1;  // Model::bodies index of the frame
   int modes = 0;
@@ -26,7 +28,10 @@ struct ModalPlan {
   Eigen::MatrixXd St_T, Sr_T;               // modes x 3
   Eigen::VectorXd omega;                    // rad/s
   Eigen::VectorXd damping;                  // 1/s: stiffness-proportional, b omega^2
-  Eigen::MatrixXd kg_spin, kg_axial;        // modes x modes
+  // Geometric stiffness (modes x modes) per load case: the spin's products
+  // w_a w_b (xx, yy, zz, xy, xz, yz) about the frame's origin, then the
+  // frame's acceleration less gravity along x, y, z (body axes).
+  std::array<Eigen::MatrixXd, 9> kg;
   std::array<Eigen::MatrixXd, 9> E;         // modes x modes
   std::array<Eigen::RowVectorXd, 9> G;      // 1 x modes
   // The nodes: their names (a beam's root, 1, ..., tip), undeformed places
@@ -57,8 +62,8 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
 // A structure's modes: computed from its stiffness (the clamped nodes held;
 // none: the 6 rigid-body modes dropped; coordinates without mass condensed
 // out, Guyan 1965), or as the file gives them, scaled to unit modal mass in
-// the nodes' lumped mass. Damping: `damping_ratio` of critical. No geometric
-// stiffness. Throws std::invalid_argument naming the file and what is wrong.
+// the nodes' lumped mass. Damping: `damping_ratio` of critical. Geometric
+// stiffness: the file's load cases on the modes. Throws std::invalid_argument naming the file and what is wrong.
 ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double damping_ratio);
 
 // Either, as the model gives it (the frame body not set).

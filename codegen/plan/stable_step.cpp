@@ -368,15 +368,15 @@ std::string modal_spin_warning(const Model& m, const StableStep& s) {
   std::ostringstream o;
   for (size_t i = 0; i < m.modal.size(); ++i) {
     const ModalSource& source = m.modal[i];
-    if (!source.structure) continue;
+    if (!source.structure || source.structure->spin_stiffens()) continue;
     const double spin = s.rotation_bound[static_cast<size_t>(source.body)], lowest = s.lowest_mode[i];
     if (spin <= kModalSpinLimit * lowest) continue;
     if (!o.str().empty()) o << "\n";
     o << "warning: " << m.name << ": modal body " << m.body_name(source.body) << " (from " << source.structure->file
-      << ") has no geometric stiffness, and with the " << format(s.energy_bound) << " J the scene can release it could turn at "
+      << ") has no geometric stiffness of spin, and with the " << format(s.energy_bound) << " J the scene can release it could turn at "
       << format(spin) << " rad/s, " << format(spin / lowest) << " of its lowest mode's " << format(lowest)
       << " rad/s: spin softens such modes where it should stiffen them, by about (spin / omega)^2; keep it below "
-      << kModalSpinLimit << " of that or model it as a beam (docs/flexible.md)";
+      << kModalSpinLimit << " of that, give its data file geometric_stiffness or model it as a beam (docs/flexible.md)";
   }
   return o.str();
 }

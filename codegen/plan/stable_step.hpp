@@ -32,7 +32,7 @@ StableStep estimate_stable_step(const Model& model, const std::vector<ModalPlan>
 // A warning for stderr when the step is above the estimate, else "".
 std::string stable_step_warning(const Model& model, const StableStep& s);
 
-// A modal body from a file has no geometric stiffness: a warning for stderr
+// A modal body from a file without geometric stiffness of spin: a warning for stderr
 // where the scene's energy could spin it faster than kModalSpinLimit of its
 // lowest frequency, else "".
 inline constexpr double kModalSpinLimit = 0.3;

@@ -19,9 +19,9 @@
 // reduced mass Mf(q) - S S^T (Mf the frame's 6x6 block, S = [St; Sr(q)])
 // and the load F - S f_q, where f_q is the modes' generalized force.
 //
-// Geometric stiffness (Kane, Ryan & Banerjee 1987): the axial force of the
-// frame's rigid motion, from the spin about the beam's normals and the
-// frame's axial acceleration less gravity, with precomputed matrices.
+// Geometric stiffness (Kane, Ryan & Banerjee 1987): the stresses of the
+// frame's rigid motion, from its spin and its acceleration less gravity,
+// with precomputed matrices per load case.
 #pragma once
 
 #include <array>
@@ -39,8 +39,11 @@ struct ModalBody {
   Eigen::Matrix<double, N, 3> St_T, Sr_T;       // St^T, Sr^T at q = 0
   Modes stiffness;                              // omega_i^2
   Modes damping;                                // 1/s: modal damping
-  ModeMatrix kg_spin;                           // geometric stiffness per (w_y^2 + w_z^2)
-  ModeMatrix kg_axial;                          // per m/s^2 of axial acceleration less gravity, towards the root
+  // Geometric stiffness per load case: per w_a w_b (xx, yy, zz, xy, xz, yz),
+  // then per m/s^2 of the frame's acceleration less gravity along x, y, z
+  // (body axes); bit k of kg_cases set where case k is not zero.
+  std::array<ModeMatrix, 9> kg;
+  unsigned kg_cases;
   std::array<ModeMatrix, 9> E;                  // int Psi_a^T Psi_b dm, index 3 a + b
   std::array<Eigen::Matrix<double, 1, N>, 9> G; // int rho0_a Psi_b dm, index 3 a + b
   Mat3 J;                                       // the undeformed body's inertia about its centre, body axes
@@ -161,7 +164,7 @@ struct ModalLoad {
 // Adds the body's centrifugal, Coriolis, gyroscopic, elastic and damping
 // terms to its frame load (force world, torque body), reduced by the modes'
 // generalized force, and returns the modal momentum's rate. ab is the
-// frame's last acceleration (body axes), for the axial geometric stiffness;
+// frame's last acceleration (body axes), for the geometric stiffness;
 // g is gravity; applied is the modes' generalized force of the loads at its
 // nodes (modal_point_force), whose frame parts load already holds.
 template <int N>
@@ -179,8 +182,13 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
   const Vec3 f = -(w.cross(w.cross(c)) + 2.0 * w.cross(cd));
   const Vec3 tau = -(w.cross(modal_inertia<N>(b, q) * w) + 2.0 * (P.trace() * w - P.transpose() * w)) + c.cross(gb);
   // Modal: centrifugal, elastic, damping, geometric stiffness, gravity.
-  const double axial = -(ab - gb).x();
-  const typename ModalBody<N>::ModeMatrix kg = (w.y() * w.y() + w.z() * w.z()) * b.kg_spin + axial * b.kg_axial;
+  const Vec3 a = ab - gb;
+  const std::array<double, 9> cases = {w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.x() * w.z(),
+                                       w.y() * w.z(), a.x(),         a.y(),         a.z()};
+  typename ModalBody<N>::ModeMatrix kg = ModalBody<N>::ModeMatrix::Zero();
+  for (size_t k = 0; k < cases.size(); ++k) {
+    if (b.kg_cases & (1u << k)) kg += cases[k] * b.kg[k];
+  }
   Modes fq = applied + b.St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd) - kg * q;
   const double w2 = w.squaredNorm();
   for (int i = 0; i < 3; ++i) {

@@ -12,8 +12,8 @@ _failures = []
 
 def environment(work):
     """The programs' environment: their compile cache is $MBRT_TEST_CACHE_DIR
-    where the test sets one (the HIL tests share one, so each program is
-    compiled once for all of them), else WORK/cache."""
+    where the test sets one (ctest sets the tests' one cache, so each program
+    is compiled once for all of them), else WORK/cache."""
     os.makedirs(work, exist_ok=True)
     return dict(os.environ, MBRT_CACHE_DIR=os.environ.get("MBRT_TEST_CACHE_DIR") or os.path.join(work, "cache"))
 
