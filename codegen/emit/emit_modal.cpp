@@ -34,15 +34,17 @@ void Emitter::modal_constants(std::ostringstream& o) const {
     o << "const mbrt::ModalBody<" << N << "> " << n << "_modal = [] {\n  mbrt::ModalBody<" << N << "> b;\n"
       << "  b.St_T << " << matrix(p.St_T) << ";\n  b.Sr_T << " << matrix(p.Sr_T) << ";\n"
       << "  b.stiffness << " << matrix(p.omega.cwiseAbs2()) << ";  // omega^2: " << matrix(p.omega) << " rad/s\n"
-      << "  b.damping << " << matrix(p.damping) << ";\n"
-      << "  b.kg_cases = 0;\n";
+      << "  b.damping << " << matrix(p.damping) << ";\n";
+    unsigned cases = 0;
     for (size_t k = 0; k < p.kg.size(); ++k) {
       if (p.kg[k].isZero(0.0)) {
         o << "  b.kg[" << k << "].setZero();\n";
       } else {
-        o << "  b.kg[" << k << "] << " << matrix(p.kg[k]) << ";\n  b.kg_cases |= 1u << " << k << ";\n";
+        o << "  b.kg[" << k << "] << " << matrix(p.kg[k]) << ";\n";
+        cases |= 1u << k;
       }
     }
+    o << "  b.kg_cases = " << cases << "u;  // the cases above that are not zero\n";
     for (int i = 0; i < 9; ++i) {
       o << "  b.E[" << i << "] << " << matrix(p.E[static_cast<size_t>(i)]) << ";\n"
         << "  b.G[" << i << "] << " << matrix(p.G[static_cast<size_t>(i)]) << ";\n";

@@ -185,11 +185,11 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
   const Vec3 a = ab - gb;
   const std::array<double, 9> cases = {w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.x() * w.z(),
                                        w.y() * w.z(), a.x(),         a.y(),         a.z()};
-  typename ModalBody<N>::ModeMatrix kg = ModalBody<N>::ModeMatrix::Zero();
+  Modes kg_q = Modes::Zero();  // the geometric stiffness times q, over the cases the body has
   for (size_t k = 0; k < cases.size(); ++k) {
-    if (b.kg_cases & (1u << k)) kg += cases[k] * b.kg[k];
+    if (b.kg_cases & (1u << k)) kg_q += cases[k] * (b.kg[k] * q);
   }
-  Modes fq = applied + b.St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd) - kg * q;
+  Modes fq = applied + b.St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd) - kg_q;
   const double w2 = w.squaredNorm();
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
@@ -209,7 +209,7 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
   fq -= 2.0 * coriolis;
   load.f += R * (f - b.St_T.transpose() * fq);
   load.tau += tau - Sr_T.transpose() * fq;
-  return {fq - b.St_T * w.cross(vb) + coriolis, 0.5 * q.dot(b.stiffness.cwiseProduct(q) + kg * q) - gb.dot(c)};
+  return {fq - b.St_T * w.cross(vb) + coriolis, 0.5 * q.dot(b.stiffness.cwiseProduct(q) + kg_q) - gb.dot(c)};
 }
 
 // The body's kinetic energy, with the deformed body's inertia terms.
