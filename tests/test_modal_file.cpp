@@ -497,7 +497,8 @@ TEST_CASE("the generator names the data file, its line and what is wrong") {
   CHECK(generator_error(part + "forces:\n  - {type: force, body: part@c, vector: [1, 0, 0]}\n")
             .find("unknown node 'c' of modal body 'part' (its nodes in") != std::string::npos);
   CHECK(generator_error(part + "joints:\n  - {name: hold, type: fixed, body1: ground, body2: part@root, point: [0, 0, 0]}\n")
-            .find("attaches at one of its clamped nodes' places") != std::string::npos);
+            .find("a fixed joint attaches to modal body 'part' at one of its clamped nodes' places: name the body") !=
+        std::string::npos);
   CHECK(generator_error(part + "forces:\n  - {type: torque, body1: ground, body2: part@b, axis: [0, 0, 1], value: 1}\n")
             .find("node 'b' of modal body 'part' has no rotations (coordinates: 3 in ") != std::string::npos);
   // A free structure's given modes must carry no rigid-body motion: here the

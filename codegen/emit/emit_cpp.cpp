@@ -448,6 +448,7 @@ void Emitter::workspace_types(std::ostringstream& o) const {
       << "    mbrt::" << type("ConstraintRows") << "<" << rows(j) << "> rows;\n";
     if (factor) {
       for (int b : moving_bodies(j)) o << "    " << block_type(body_dofs(), rows(j)) << " mbt_" << body(b).name << ";\n";
+      for (int b : node_bodies(j)) o << "    " << block_type(rows(j), 6) << " jq_" << body(b).name << ";  // the modal momenta's columns\n";
       o << "    " << block_type(rows(j), rows(j)) << " L;\n";
       for (int k : a_.pattern.order) {
         const auto& lower = a_.pattern.lower[static_cast<size_t>(k)];
@@ -613,6 +614,10 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
   std::vector<std::string> part_lines(static_cast<size_t>(parts()));
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& b = block(j);
+    if (!node_bodies(j).empty()) {
+      part_lines[0] += modal_node_block(j);
+      continue;
+    }
     std::string line = "  " + rows_of(j) + " = mbrt::" + b.kernel + "(" + b.name + "_frame, " + motion(b.body1) + ", " +
                        motion(b.body2);
     if (b.function) line += ",\n      " + driver_function_value(b);
@@ -625,6 +630,10 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
     for (size_t n = 0; n < moving_bodies(j).size(); ++n) {
       jacobian += ops::product(rows(j), body_dofs(), 1);
       if (n > 0) jacobian += ops::sum(rows(j), 1);
+    }
+    for (int b : node_bodies(j)) {
+      jacobian += ops::product(rows(j), modes_of(b), 1);
+      jacobian += ops::sum(rows(j), 1);
     }
   }
   o << "// (c, u) => (B u). " << jacobian.text() << ".\n"
@@ -640,6 +649,11 @@ void Emitter::constraint_stage(std::ostringstream& o) const {
         forces += ops::product(body_dofs(), rows(j), 1);
         forces += ops::scale(body_dofs(), 1);
         forces += ops::sum(body_dofs(), 1);
+      }
+      for (int b : node_bodies(j)) {
+        forces += ops::product(modes_of(b), rows(j), 1);
+        forces += ops::scale(modes_of(b), 1);
+        forces += ops::sum(modes_of(b), 1);
       }
     }
     o << "// (c, lambda) => (u): u -= scale M^-1 B^T lambda. " << forces.text() << ".\n"
@@ -681,6 +695,12 @@ OpCount Emitter::s_block_ops(int i, int j) const {
     const auto mj = moving_bodies(j);
     if (std::find(mj.begin(), mj.end(), b) == mj.end()) continue;
     c += ops::product(rows(i), body_dofs(), rows(j));
+    if (terms++ > 0) c += ops::sum(rows(i), rows(j));
+  }
+  for (int b : node_bodies(i)) {
+    const auto nj = node_bodies(j);
+    if (std::find(nj.begin(), nj.end(), b) == nj.end()) continue;
+    c += ops::product(rows(i), modes_of(b), rows(j));
     if (terms++ > 0) c += ops::sum(rows(i), rows(j));
   }
   return c;
@@ -839,6 +859,11 @@ std::string Emitter::constraint_force_lines(const std::vector<bool>& in, const s
     for (int b : moving_bodies(ji)) {
       lines += indent + "u" + at(b) + " -= scale * (" + mbt(ji, b) + " * " + seg("lambda", ji) + ");\n";
     }
+    for (int b : node_bodies(ji)) {
+      const std::string N = "<" + std::to_string(modes_of(b)) + ">()";
+      lines += indent + "u" + momenta_at(b) + ".head" + N + " -= scale * (" + jq(ji, b) + ".leftCols" + N + ".transpose() * " +
+               seg("lambda", ji) + ");\n";
+    }
   }
   return lines;
 }
@@ -902,6 +927,10 @@ std::string Emitter::jacobian_product(int j, const std::string& u) const {
   for (int b : moving_bodies(j)) {
     e += (e.empty() ? "" : " + ") + rows_of(j) + "." + side(j, b) + " * " + u + at(b);
   }
+  for (int b : node_bodies(j)) {
+    const std::string N = "<" + std::to_string(modes_of(b)) + ">()";
+    e += " + " + jq(j, b) + ".leftCols" + N + " * " + u + momenta_at(b) + ".head" + N;
+  }
   return e;
 }
 
@@ -911,6 +940,13 @@ std::string Emitter::s_block(int i, int j, const std::string& directions) const 
     const auto mj = moving_bodies(j);
     if (std::find(mj.begin(), mj.end(), b) == mj.end()) continue;
     e += (e.empty() ? "" : " + ") + rows_of(i) + "." + side(i, b) + " * " + mbt(j, b, directions);
+  }
+  for (int b : node_bodies(i)) {
+    const auto nj = node_bodies(j);
+    const std::string N = "<" + std::to_string(modes_of(b)) + ">()";
+    if (std::find(nj.begin(), nj.end(), b) != nj.end()) {
+      e += " + " + jq(i, b) + ".leftCols" + N + " * " + jq(j, b, directions) + ".leftCols" + N + ".transpose()";
+    }
   }
   return e.empty() ? block_type(rows(i), rows(j)) + "::Zero()" : e;
 }
@@ -1189,10 +1225,18 @@ void Emitter::reactions_function(std::ostringstream& o) const {
   for (int j = 0; j < blocks(); ++j) {
     const ConstraintBlock& b = block(j);
     const bool on_body2 = b.body2 != kGround;
-    const int on = on_body2 ? b.body2 : b.body1;
-    const std::string point = on_body2 ? pose(b.body2) + ".r + " + pose(b.body2) + ".R * " + b.name + "_frame.s2"
-                                       : b.name + "_frame.s2";
-    o << "  r[constraint::" << b.name << "] = mbrt::joint_reaction(-(" << rows_of(j) << "." << (on_body2 ? "J2" : "J1")
+    const int on = on_body2 ? b.body2 : b.body1, node = on_body2 ? b.node2 : b.node1;
+    std::string point = on_body2 ? pose(b.body2) + ".r + " + pose(b.body2) + ".R * " + b.name + "_frame.s2"
+                                 : b.name + "_frame.s2";
+    // At a modal body's node: the frame's columns before the modal momenta took their share.
+    std::string columns = rows_of(j) + "." + (on_body2 ? "J2" : "J1");
+    if (node >= 0) {
+      if (on_body2) point = modal_node_place(on, node);
+      columns = "(" + columns + " + mbrt::modal_frame_share<" + std::to_string(modes_of(on)) + ", " + std::to_string(rows(j)) +
+                ">(" + body(on).name + "_modal, " + pose(on) + ".R, " + modal_coordinates(plan(on).modal, "modal_q") + ", " +
+                jq(j, on) + "))";
+    }
+    o << "  r[constraint::" << b.name << "] = mbrt::joint_reaction(-(" << columns
       << ".transpose() * " << seg("s.lambda", j) << "), " << pose(on) << ",\n      " << point << ", "
       << (on_body2 ? "1.0" : "-1.0") << ", " << pose(b.body1) << ", " << b.name << "_frame);\n";
   }

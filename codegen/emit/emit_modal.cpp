@@ -72,6 +72,7 @@ std::vector<int> Emitter::modal_nodes(int i) const {
   for (const Output& out : m_.outputs) use(out.body, out.node);
   for (const Force& f : m_.forces) use(f.body, f.node), use(f.body1, f.node1), use(f.body2, f.node2);
   for (const Input& in : m_.inputs) use(in.body1, in.node1), use(in.body2, in.node2);
+  for (int j = 0; j < blocks(); ++j) use(block(j).body1, block(j).node1), use(block(j).body2, block(j).node2);
   std::sort(nodes.begin(), nodes.end());
   return nodes;
 }
@@ -116,6 +117,38 @@ void Emitter::modal_force_load(std::ostringstream& o, const Force& f, const std:
     else o << "    mbrt::add_point_force(l.w" << at(b) << ", " << pose(b) << ", spring.s" << (e + 1) << ", " << force << ");\n";
   }
   o << "    l.elastic_energy += e.energy;\n  }\n";
+}
+
+// The kernel sees the frame carrying the node's deformed place at the
+// node's velocity; modal_node_rows then splits its columns between the
+// frame and the modal momenta and adds the node's deformation terms to quad.
+std::string Emitter::modal_node_block(int j) const {
+  const ConstraintBlock& b = block(j);
+  const auto label = [&](int body, int node) { return node >= 0 ? modal_node_label(body, node) : m_.body_name(body); };
+  std::string out = "  {  // " + b.kernel + " " + label(b.body1, b.node1) + " - " + label(b.body2, b.node2) + "\n" +
+                    "    mbrt::JointFrame f = " + b.name + "_frame;\n";
+  std::string motions[2] = {motion(b.body1), motion(b.body2)}, columns;
+  const int bodies[2] = {b.body1, b.body2}, nodes[2] = {b.node1, b.node2};
+  for (int e = 0; e < 2; ++e) {
+    const int i = bodies[e], k = nodes[e];
+    if (k < 0) continue;
+    const int m = plan(i).modal;
+    const std::string N = std::to_string(modes_of(i)), x = "node" + std::to_string(e + 1);
+    const std::string args = body(i).name + "_modal, " + modal_node_constant(i, k) + ", " + pose(i) + ", k.vel" + at(i) + ", " +
+                             modal_coordinates(m, "modal_q") + ", " + modal_coordinates(m, "modal_p");
+    out += "    const mbrt::ModalPointMotion " + x + " = mbrt::modal_point_motion<" + N + ">(" + args + ");\n" +
+           "    f.s" + std::to_string(e + 1) + " = " + x + ".point;\n";
+    motions[e] = "mbrt::BodyMotion{" + pose(i) + ", " + x + ".velocity}";
+    columns += "    " + jq(j, i) + " = mbrt::modal_node_rows<" + N + ", " + std::to_string(rows(j)) + ">(" + args + ", " + rows_of(j) +
+               "." + (e == 0 ? "J1" : "J2") + ", " + rows_of(j) + ".quad);\n";
+  }
+  return out + "    " + rows_of(j) + " = mbrt::" + b.kernel + "(f, " + motions[0] + ", " + motions[1] + ");\n" + columns + "  }\n";
+}
+
+std::string Emitter::modal_node_place(int b, int k) const {
+  const int m = plan(b).modal;
+  const std::string c = modal_node_constant(b, k);
+  return pose(b) + ".r + " + pose(b) + ".R * (" + c + ".point + " + c + ".displacement * " + modal_coordinates(m, "modal_q") + ")";
 }
 
 void Emitter::modal_loads(std::ostringstream& o) const {

@@ -479,7 +479,7 @@ int read_body_ref(const Value& v, const Model& model, int* node = nullptr) {
       const bool beam = !modal_source(model, body)->structure;
       fail(v, "'" + name + "' is a modal body: name it, and this attaches " +
                   (beam ? "at its root" : "at one of its clamped nodes' places") +
-                  " (only forces, torques, spring_dampers, motor_torque inputs and outputs take " + name + (beam ? "@tip or " + name + "@K)" : "@NODE)"));
+                  " (only spherical and distance joints, forces, torques, spring_dampers, motor_torque inputs and outputs take " + name + (beam ? "@tip or " + name + "@K)" : "@NODE)"));
     }
     if (k >= 0) {
       *node = k;
@@ -904,12 +904,23 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
   check_unique(name, j.name, "joint", names_seen);
   if (contact) return parse_contact(s, model, j);
 
-  j.body1 = read_body_ref(s.get("body1"), model);
+  const Value body1 = s.get("body1");
+  j.body1 = read_body_ref(body1, model, &j.node1);
   const Value body2 = s.get("body2");
-  j.body2 = read_body_ref(body2, model);
+  j.body2 = read_body_ref(body2, model, &j.node2);
   if (j.body1 == j.body2) {
     fail(body2, "a joint must connect two different bodies (both are '" +
                     model.body_name(j.body1) + "')");
+  }
+  // A point joint holds a modal body's node where it deforms to; the
+  // others would need its section's small rotations too.
+  const bool point_joint = j.type == JointType::spherical || j.type == JointType::distance;
+  for (const auto& [value, body, node] : {std::tuple{body1, j.body1, j.node1}, std::tuple{body2, j.body2, j.node2}}) {
+    if (node < 0 || point_joint) continue;
+    const bool beam = !modal_source(model, body)->structure;
+    fail(value, "a " + type.node.Scalar() + " joint attaches to modal body '" + model.body_name(body) + "' " +
+                    (beam ? "at its root" : "at one of its clamped nodes' places") +
+                    ": name the body; only spherical and distance joints take one of its nodes");
   }
 
   switch (j.type) {
@@ -943,9 +954,11 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
       break;
     }
     case JointType::distance: {
-      j.point1 = read_vector3(s.get("point1"));
-      const Value point2 = s.get("point2");
-      j.point2 = read_vector3(point2);
+      // At a modal body's node, its place is the point's default.
+      const bool at_node1 = j.node1 >= 0 && !s.find("point1"), at_node2 = j.node2 >= 0 && !s.find("point2");
+      j.point1 = at_node1 ? modal_node_place(model, j.body1, j.node1) : read_vector3(s.get("point1"));
+      const Value point2 = at_node2 ? body2 : s.get("point2");
+      j.point2 = at_node2 ? modal_node_place(model, j.body2, j.node2) : read_vector3(point2);
       if (auto v = s.find("length")) {
         j.length = read_positive(*v);
       } else {
@@ -958,6 +971,23 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
       break;
     }
     case JointType::spherical:
+      if (const auto point = s.find("point")) {
+        j.point = read_vector3(*point);
+      } else if (j.node1 >= 0 && j.node2 >= 0) {
+        j.point = modal_node_place(model, j.body2, j.node2);
+        const Eigen::Vector3d other = modal_node_place(model, j.body1, j.node1);
+        if ((other - j.point).norm() > 1e-9 * std::max(1.0, j.point.norm())) {
+          fail(body2, "a spherical joint holds its two nodes together, but they start " + format_number((other - j.point).norm()) +
+                          " m apart; move the bodies so that they meet, or join them by a distance joint");
+        }
+      } else if (j.node2 >= 0) {
+        j.point = modal_node_place(model, j.body2, j.node2);
+      } else if (j.node1 >= 0) {
+        j.point = modal_node_place(model, j.body1, j.node1);
+      } else {
+        j.point = read_vector3(s.get("point"));
+      }
+      break;
     case JointType::fixed:
       j.point = read_vector3(s.get("point"));
       break;

@@ -1,11 +1,13 @@
 #include "analysis.hpp"
 
+#include <Eigen/LU>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseQR>
 
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <tuple>
 
 #include <amd.h>
 #include <camd.h>
@@ -311,7 +313,9 @@ std::vector<ConstraintBlock> constraint_blocks(const Model& model) {
                           .rows = type.rows,
                           .first_row = rows,
                           .frame = joint_frame(model, j, key),
-                          .holonomic_rows = type.holonomic_rows};
+                          .holonomic_rows = type.holonomic_rows,
+                          .node1 = j.node1,
+                          .node2 = j.node2};
     rows += block.rows;
     blocks.push_back(block);
   }
@@ -519,6 +523,112 @@ static void check_absolute_friction(const Model& model) {
 // joints attach there; forces and outputs at the root or a node (NAME@K).
 // The staggered schemes that step the frame with its reduced mass and the
 // modes' momentum take them.
+// The modal columns of the constraint Jacobian at t = 0 (undeformed): a
+// point joint at a modal body's node moves with the node's modes, J_v R Psi
+// (include/mbrt/modal_body.hpp, modal_node_rows), N columns per modal body.
+static Eigen::MatrixXd node_columns(const Model& model, const Analysis& a, const Eigen::MatrixXd& B) {
+  std::vector<int> first_column;
+  int columns = 0;
+  for (const ModalPlan& p : a.modal) first_column.push_back(columns), columns += p.modes;
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(B.rows(), columns);
+  for (const ConstraintBlock& c : a.constraints) {
+    for (const auto& [body, node] : {std::pair{c.body1, c.node1}, std::pair{c.body2, c.node2}}) {
+      if (node < 0) continue;
+      const int m = a.bodies[static_cast<size_t>(body)].modal;
+      const ModalPlan& p = a.modal[static_cast<size_t>(m)];
+      const Eigen::Matrix3d R = mbrt::rotation_matrix(model.bodies[static_cast<size_t>(body)].orientation);
+      out.block(c.first_row, first_column[static_cast<size_t>(m)], c.rows, p.modes) =
+          B.block(c.first_row, 6 * body, c.rows, 3) * R * modal_node(p, node).displacement;
+    }
+  }
+  // Round-off leaves traces where a bending mode moves a node along the beam
+  // (1e-9 of its transverse motion), which would hide the repeats below.
+  if (out.size() == 0) return out;
+  const double largest = out.cwiseAbs().maxCoeff();
+  return (out.array().abs() < 1e-8 * largest).select(0.0, out);
+}
+
+// Redundant rows that hold at second order where point joints hold modal
+// nodes. A repeat among the rows at t = 0 (B^T n = 0) is harmless where, along
+// every motion the joints allow (B z = 0), the rows' second-order change
+// d2 = z^T Phi'' z is one a first-order correction can cancel (n . d2 = 0):
+// a clamped beam propped at its tip, a planar loop. Where it is not (a beam
+// of bending modes held at two places along its axis, its frame free to turn:
+// turning it to follow the deflection moves the far end along the axis by
+// theta^2 L / 2, which its modes cannot), the body could not bend without
+// breaking the joints; the step would lock it or fail. d2 comes from the
+// rows at +-eps z, the node joints' points moved with the modes.
+static void refuse_inconsistent_node_joints(const Model& model, const Analysis& a, const Eigen::MatrixXd& B) {
+  const auto kernel = [](const Eigen::MatrixXd& m) {
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(m);
+    lu.setThreshold(1e-10);  // as the rank count's
+    return Eigen::MatrixXd(lu.kernel());
+  };
+  const Eigen::MatrixXd motions = kernel(B), repeats = kernel(B.transpose());
+  if (motions.isZero(0.0) || repeats.isZero(0.0)) return;
+  const int bodies = static_cast<int>(model.bodies.size());
+  std::vector<int> first_column;
+  int columns = 6 * bodies;
+  for (const ModalPlan& p : a.modal) first_column.push_back(columns), columns += p.modes;
+  const auto rows_at = [&](const Eigen::VectorXd& x) {
+    Model moved = model;
+    for (int i = 0; i < bodies; ++i) {
+      Body& b = moved.bodies[static_cast<size_t>(i)];
+      b.position += x.segment<3>(6 * i);
+      if (!b.particle) b.orientation = mbrt::quaternion_product(b.orientation, mbrt::cayley_increment(x.segment<3>(6 * i + 3)));
+    }
+    std::vector<ConstraintBlock> blocks = a.constraints;
+    for (ConstraintBlock& c : blocks) {
+      for (const auto& [body, node, point] : {std::tuple{c.body1, c.node1, &c.frame.s1}, std::tuple{c.body2, c.node2, &c.frame.s2}}) {
+        if (node < 0) continue;
+        const int m = a.bodies[static_cast<size_t>(body)].modal;
+        const ModalPlan& p = a.modal[static_cast<size_t>(m)];
+        const ModalNode n = modal_node(p, node);
+        *point = n.point + n.displacement * x.segment(first_column[static_cast<size_t>(m)], p.modes);
+      }
+    }
+    return evaluate_constraints(moved, blocks, 0.0).phi;
+  };
+  // Along each allowed motion and a few mixtures of them (a quadratic form
+  // can vanish on a basis and not between), by differences at +-eps: their
+  // error, eps^2 of the rows' fourth derivative plus round-off over eps^2
+  // (1e-10 of the model's size), is far below what is taken as a part.
+  double size = 1.0;
+  for (const Body& b : model.bodies) size = std::max(size, b.position.norm());
+  for (const ModalPlan& p : a.modal)
+    for (const Eigen::Vector3d& x : p.node_points) size = std::max(size, x.norm());
+  Eigen::MatrixXd mixtures(motions.cols(), 4);  // fixed, generic weights: the same answer each run
+  for (Eigen::Index j = 0; j < mixtures.rows(); ++j)
+    for (Eigen::Index k = 0; k < mixtures.cols(); ++k) mixtures(j, k) = std::sin(1.0 + 0.7 * static_cast<double>((j + 1) * (k + 2)));
+  Eigen::MatrixXd along(motions.rows(), motions.cols() + mixtures.cols());
+  along << motions, motions * mixtures;
+  const double eps = 1e-3;
+  const Eigen::VectorXd still = rows_at(Eigen::VectorXd::Zero(columns));
+  for (Eigen::Index k = 0; k < along.cols(); ++k) {
+    const Eigen::VectorXd z = along.col(k).normalized();
+    const Eigen::VectorXd d2 = (rows_at(eps * z) + rows_at(-eps * z) - 2 * still) / (eps * eps);
+    for (Eigen::Index r = 0; r < repeats.cols(); ++r) {
+      const Eigen::VectorXd n = repeats.col(r).normalized();
+      if (std::abs(n.dot(d2)) <= 1e-4 * d2.cwiseAbs().maxCoeff() + 1e-7 * size) continue;
+      // The node joint the repeat leans on most.
+      const ConstraintBlock* worst = nullptr;
+      double weight = 0.0;
+      for (const ConstraintBlock& c : a.constraints) {
+        const double w = n.segment(c.first_row, c.rows).norm();
+        if ((c.node1 >= 0 || c.node2 >= 0) && w > weight) worst = &c, weight = w;
+      }
+      if (!worst || weight < 1e-9) continue;  // among rigid joints only: not a modal body's
+      const int body = worst->node1 >= 0 ? worst->body1 : worst->body2;
+      throw ModelError(worst->where, "joints." + worst->name,
+                       "its rows repeat the other joints' at t = 0, and part at second order as the bodies move: it holds "
+                       "modal body '" + model.body_name(body) + "' at a node along a direction its modes do not move that "
+                       "node in (a beam of bending modes held at two places along its axis, free to turn), so it could "
+                       "not bend without breaking the joints; free that direction (a distance joint across it instead of "
+                       "a spherical one) or keep a mode that moves the node along it");
+    }
+  }
+}
+
 static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
   std::vector<ModalPlan> plans;
   for (size_t i = 0; i < model.modal.size(); ++i) {
@@ -590,8 +700,8 @@ static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
     };
     for (const ConstraintBlock& c : a.constraints) {
       if (c.source != ConstraintSource::joint) continue;
-      if (c.body1 == beam.body) at_root(c.frame.s1, c.where, "joints." + c.name);
-      if (c.body2 == beam.body) at_root(c.frame.s2, c.where, "joints." + c.name);
+      if (c.body1 == beam.body) at_node(c.node1, c.frame.s1, c.where, "joints." + c.name);
+      if (c.body2 == beam.body) at_node(c.node2, c.frame.s2, c.where, "joints." + c.name);
     }
     for (const ForcePlan& f : a.forces) {
       const Force& force = model.forces[static_cast<size_t>(f.model_index)];
@@ -729,6 +839,7 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   if (!specialize.unloaded_bodies) {
     for (BodyPlan& b : a.bodies) b.loaded = true;
   }
+  a.modal = modal_plans(model, a);  // before S's diagonal and rank: joints at nodes add columns
   a.partition = plan_partition(model, a, specialize);
   a.pattern = factor_pattern(specialize.sparse_factor ? coupling(a.constraints) : every_pair(a.constraints.size()),
                              a.partition);
@@ -742,9 +853,13 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   if (a.constraint_rows > 0) {
     const StackedConstraints c = evaluate_constraints(model, a.constraints, 0.0);
     // diag(B M^-1 B^T), row by row: B's rows are sparse and M^-1 block-diagonal.
-    const Eigen::SparseMatrix<double> b = c.B.sparseView();
-    const Eigen::SparseMatrix<double> b_m_inv = b * inverse_mass_matrix(model);
-    s_diagonal = b_m_inv.cwiseProduct(b) * Eigen::VectorXd::Ones(b.cols());
+    const Eigen::SparseMatrix<double> rigid = c.B.sparseView();
+    const Eigen::SparseMatrix<double> b_m_inv = rigid * inverse_mass_matrix(model);
+    const Eigen::MatrixXd modal_columns = node_columns(model, a, c.B);  // unit modal masses
+    s_diagonal = b_m_inv.cwiseProduct(rigid) * Eigen::VectorXd::Ones(rigid.cols()) + modal_columns.rowwise().squaredNorm();
+    Eigen::MatrixXd every_column(c.B.rows(), c.B.cols() + modal_columns.cols());
+    every_column << c.B, modal_columns;
+    const Eigen::SparseMatrix<double> b = every_column.sparseView();
     a.regularization = model.solver.penalty * s_diagonal.maxCoeff();
     // Redundant rows (closed planar loops, Bricard's mechanism) leave S singular
     // but for the regularization.
@@ -754,6 +869,11 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
     qr.setPivotThreshold(1e-10 * std::max(1.0, b.norm()));
     qr.compute(bt);
     a.redundant_rows = a.constraint_rows - static_cast<int>(qr.rank());
+    if (a.redundant_rows > 0 && std::any_of(a.constraints.begin(), a.constraints.end(), [](const ConstraintBlock& c) {
+          return c.node1 >= 0 || c.node2 >= 0;
+        })) {
+      refuse_inconsistent_node_joints(model, a, every_column);
+    }
     // The position stage's matrix B(q*) M^-1 B(q(t))^T is not symmetric: with
     // redundant rows, its left and right null spaces differ and a shift as small
     // as S's lets the unreachable part of phi grow. 1e-2 of S's diagonal keeps
@@ -776,7 +896,6 @@ Analysis analyse(const Model& model, const Specializations& specialize) {
   }
   a.mechanism = mechanisms(model, a.constraints);
   a.contacts = contact_plans(model, a);
-  a.modal = modal_plans(model, a);
   check_absolute_friction(model);
   if (model.solver.body_states_on_demand && !mbrt::joint_space(model.solver.scheme)) {
     throw ModelError(model.solver.body_states_where, "solver.body_states",

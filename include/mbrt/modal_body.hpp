@@ -295,4 +295,45 @@ inline ModalPointMotion modal_point_motion(const ModalBody<N>& b, const ModalPoi
   return {c.point + c.displacement * q, {vel.v + pose.R * (c.displacement * qd), vel.w}};
 }
 
+// Jq S^T: what the momentum column Jq takes from the frame's columns. The
+// step's velocities are the frame's (v world, w body) and the modal momenta
+// p = qdot + S^T (v, w), S^T = [St^T R^T, Sr(q)^T], so a row J_v x_node_dot
+// reads (J - Jq S^T) (v, w) + Jq p.
+template <int N, int K>
+inline Eigen::Matrix<double, K, 6> modal_frame_share(const ModalBody<N>& b, const Mat3& R, const Eigen::Matrix<double, N, 1>& q,
+                                                     const Eigen::Matrix<double, K, 6>& Jq) noexcept {
+  Eigen::Matrix<double, N, 6> S_T;
+  S_T << b.St_T * R.transpose(), turn_coupling_transpose<N>(b, q);
+  Eigen::Matrix<double, K, 6> share;
+  share = Jq.template leftCols<N>() * S_T;
+  return share;
+}
+
+// Rows of a point constraint (spherical, distance) at node c of a modal
+// body, from a kernel's rows for the frame carrying the node's deformed
+// place at the node's velocity (modal_point_motion): J holds the frame's
+// columns, J_v = J's first three the place's. The node moves by
+// x_ddot = v_dot + R (w_dot x s + Psi q_ddot) + R (w x (w x s) + 2 w x Psi q_dot),
+// and with q_ddot = p_dot - S^T (v_dot, w_dot) + St^T (w x R^T v) - dSr^T(q_dot) w
+// (dSr^T the part of Sr(q)^T linear in q) the rows gain the momentum
+// column Jq = J_v R Psi (returned in the first N of 6 columns), the frame's
+// columns lose Jq S^T, and quad gains J_v times what the kernel's rigid
+// carried point leaves out.
+template <int N, int K>
+inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const ModalPoint<N>& c, const BodyPose& pose,
+                                                   const BodyVelocity& vel, const Eigen::Matrix<double, N, 1>& q,
+                                                   const Eigen::Matrix<double, N, 1>& p, Eigen::Matrix<double, K, 6>& J,
+                                                   Eigen::Matrix<double, K, 1>& quad) noexcept {
+  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, pose.R, vel.v, vel.w, q, p);
+  const Eigen::Matrix<double, K, 3> Jv = J.template leftCols<3>();
+  Eigen::Matrix<double, K, 6> Jq = Eigen::Matrix<double, K, 6>::Zero();
+  Jq.template leftCols<N>() = Jv * pose.R * c.displacement;
+  J -= modal_frame_share<N, K>(b, pose.R, q, Jq);
+  const Vec3 u_dot = c.displacement * qd;
+  const Eigen::Matrix<double, N, 1> q_ddot_bias =
+      b.St_T * vel.w.cross(pose.R.transpose() * vel.v) - (turn_coupling_transpose<N>(b, qd) - b.Sr_T) * vel.w;
+  quad += Jv * (pose.R * (2.0 * vel.w.cross(u_dot) + c.displacement * q_ddot_bias));
+  return Jq;
+}
+
 }  // namespace mbrt
