@@ -4,7 +4,8 @@
 // cantilever and a simply supported beam against their closed-form
 // deflections, reactions and first frequencies in the three schemes that
 // take modal bodies; a free beam holding two particles by such joints keeps
-// the bodies' energy, momentum and angular momentum; the generator's checks.
+// the bodies' energy, momentum and angular momentum, in a step that
+// allocates nothing; the generator's checks.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -27,6 +28,7 @@
 #include "modal_propped_baumgarte.hpp"
 #include "modal_propped_blajer.hpp"
 #include "model.hpp"
+#include "step_allocations.hpp"
 
 namespace {
 
@@ -143,9 +145,11 @@ TEST_CASE("a point joint's rows at a modal body's node move as finite difference
     using State = mbrt::models::NS::State;                                                     \
     using Outputs = mbrt::models::NS::Outputs;                                                 \
     using Reactions = mbrt::models::NS::Reactions;                                             \
+    using Workspace = mbrt::models::NS::Workspace;                                             \
     static constexpr double kStep = mbrt::models::NS::kStep;                                   \
     static State initial_state() { return mbrt::models::NS::initial_state(); }                 \
     static mbrt::StepStatus step(State& s) { return mbrt::models::NS::step(s); }               \
+    static mbrt::StepStatus step(State& s, Workspace& w) { return mbrt::models::NS::step(s, w); } \
     static void outputs(const State& s, Outputs& y) { mbrt::models::NS::outputs(s, y); }       \
     static void reactions(const State& s, Reactions& r) { mbrt::models::NS::reactions(s, r); } \
     static double energy(const State& s) { return mbrt::models::NS::energy(s).total(); }       \
@@ -285,6 +289,11 @@ TEST_CASE("a free modal body holding particles by joints at two nodes keeps the 
   CHECK(fine.energy < pcst.energy / 6);
   CHECK(fine.momentum < pcst.momentum / 6);
   CHECK(fine.angular_momentum < pcst.angular_momentum / 6);
+}
+
+TEST_CASE("the step holding modal nodes by joints allocates nothing") {
+  CHECK(allocations_in<models::modal_joint_pair>(2000) == 0);
+  CHECK(allocations_in<models::modal_joint_pair_blajer>(2000) == 0);
 }
 
 namespace {
