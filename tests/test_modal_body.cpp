@@ -16,6 +16,7 @@
 
 #include "allocation_counter.hpp"
 #include "analysis.hpp"
+#include "generator_error.hpp"
 #include "beam_modes.hpp"
 #include "modal_body.hpp"
 #include "modal_cantilever.hpp"
@@ -44,15 +45,6 @@ struct SpinUp {
   static mbrt::StepStatus step(State& s, Workspace& w) { return mbrt::models::modal_spin_up::step(s, w); }
 };
 
-// The analysis's error for a model text, or "" when it passes.
-std::string generator_error(const std::string& yaml) {
-  try {
-    cg::analyse(cg::parse_model(yaml, "modal.yaml"));
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 

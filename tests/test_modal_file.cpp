@@ -26,6 +26,7 @@
 #include <Eigen/Geometry>
 
 #include "analysis.hpp"
+#include "generator_error.hpp"
 #include "modal_body.hpp"
 #include "modal_file_free.hpp"
 #include "modal_file_free_fine.hpp"
@@ -42,15 +43,7 @@ using mbrt::Vec3;
 namespace cg = mbrt::codegen;
 
 const std::string kModels = MBRT_TEST_MODELS;
-
-std::string generator_error(const std::string& yaml, const std::string& file = kModels + "/inline.yaml") {
-  try {
-    cg::analyse(cg::parse_model(yaml, file));
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+const std::string kInline = kModels + "/inline.yaml";  // data files resolve from the test models
 
 // A data file in the temporary directory, removed after the test.
 struct TemporaryFile {
@@ -407,7 +400,7 @@ TEST_CASE("the generator names the data file, its line and what is wrong") {
   const std::string body = "name: bad\nbodies:\n  - name: part\n    flexible: {file: ";
   const auto with_file = [&](const std::string& name, const std::string& text) {
     const TemporaryFile file(name, text);
-    return generator_error(body + file.path.string() + ", modes: 2}\n");
+    return generator_error(body + file.path.string() + ", modes: 2}\n", kInline);
   };
   const std::string nodes =
       "coordinates: 3\nnodes:\n  - {name: root, position: [0, 0, 0], mass: 1}\n  - {name: base, position: [0, 1, 0], mass: 1}\n"
@@ -444,7 +437,7 @@ TEST_CASE("the generator names the data file, its line and what is wrong") {
   CHECK(with_file("given_pair.yaml", given_pair).find("2 modes kept, but modes 2 and 3 have the same frequency (2.0") !=
         std::string::npos);
 
-  const std::string missing = generator_error(body + "no_such_file.yaml, modes: 2}\n");
+  const std::string missing = generator_error(body + "no_such_file.yaml, modes: 2}\n", kInline);
   CHECK(missing.find("bodies[0].flexible.file") != std::string::npos);
   CHECK(missing.find("cannot open the modal data file") != std::string::npos);
   CHECK(missing.find("no_such_file.yaml") != std::string::npos);
@@ -490,16 +483,16 @@ TEST_CASE("the generator names the data file, its line and what is wrong") {
   const TemporaryFile chain("chain.yaml", nodes + "clamped: [root, base]\nstiffness:\n" + rows);
   const std::string part = body + chain.path.string() + ", modes: 2}\n";
   CHECK(generator_error(part + "joints:\n  - {name: hold, type: fixed, body1: ground, body2: part, point: [0, 1, 0]}\n"
-                               "forces:\n  - {type: force, body: part@b, vector: [1, 0, 0]}\n  - {type: force, body: part@2, vector: [1, 0, 0]}\n") == "");
-  const std::string off = generator_error(part + "joints:\n  - {name: hold, type: fixed, body1: ground, body2: part, point: [1, 0, 0]}\n");
+                               "forces:\n  - {type: force, body: part@b, vector: [1, 0, 0]}\n  - {type: force, body: part@2, vector: [1, 0, 0]}\n", kInline) == "");
+  const std::string off = generator_error(part + "joints:\n  - {name: hold, type: fixed, body1: ground, body2: part, point: [1, 0, 0]}\n", kInline);
   CHECK(off.find("away from where its modes are clamped; put it at part@root (0.000000, 0.000000, 0.000000 at t = 0), part@base") !=
         std::string::npos);
-  CHECK(generator_error(part + "forces:\n  - {type: force, body: part@c, vector: [1, 0, 0]}\n")
+  CHECK(generator_error(part + "forces:\n  - {type: force, body: part@c, vector: [1, 0, 0]}\n", kInline)
             .find("unknown node 'c' of modal body 'part' (its nodes in") != std::string::npos);
-  CHECK(generator_error(part + "joints:\n  - {name: hold, type: fixed, body1: ground, body2: part@root, point: [0, 0, 0]}\n")
+  CHECK(generator_error(part + "joints:\n  - {name: hold, type: fixed, body1: ground, body2: part@root, point: [0, 0, 0]}\n", kInline)
             .find("a fixed joint attaches to modal body 'part' at one of its clamped nodes' places: name the body") !=
         std::string::npos);
-  CHECK(generator_error(part + "forces:\n  - {type: torque, body1: ground, body2: part@b, axis: [0, 0, 1], value: 1}\n")
+  CHECK(generator_error(part + "forces:\n  - {type: torque, body1: ground, body2: part@b, axis: [0, 0, 1], value: 1}\n", kInline)
             .find("node 'b' of modal body 'part' has no rotations (coordinates: 3 in ") != std::string::npos);
   // A free structure's given modes must carry no rigid-body motion: here the
   // first moves every node alike.

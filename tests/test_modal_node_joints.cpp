@@ -20,6 +20,7 @@
 #include <mbrt/modal_body.hpp>
 
 #include "analysis.hpp"
+#include "generator_error.hpp"
 #include "modal_joint_pair.hpp"
 #include "modal_joint_pair_blajer.hpp"
 #include "modal_joint_pair_fine.hpp"
@@ -296,18 +297,6 @@ TEST_CASE("the step holding modal nodes by joints allocates nothing") {
   CHECK(allocations_in<models::modal_joint_pair_blajer>(2000) == 0);
 }
 
-namespace {
-
-std::string generator_error(const std::string& yaml) {
-  try {
-    cg::analyse(cg::parse_model(yaml, "modal.yaml"));
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
 
 TEST_CASE("the generator holds a modal body's node by a point joint, and refuses the joints it cannot") {
   const std::string beam =

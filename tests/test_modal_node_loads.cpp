@@ -12,6 +12,7 @@
 #include <string>
 
 #include "analysis.hpp"
+#include "generator_error.hpp"
 #include "modal_momenta.hpp"
 #include "modal_spring_pair.hpp"
 #include "modal_spring_pair_fine.hpp"
@@ -42,14 +43,6 @@ Settled settle(State s, Step step, Outputs y, OutputsOf outputs, int tip_a, int 
   return r;
 }
 
-std::string generator_error(const std::string& yaml) {
-  try {
-    cg::analyse(cg::parse_model(yaml, "modal.yaml"));
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 
