@@ -82,6 +82,12 @@ NodeRows<Kernel, K> node_rows(const Trajectory& x, const mbrt::ModalPoint<N>& c,
   const mbrt::BodyVelocity still{Vec3::Zero(), Vec3::Zero()};
   mbrt::JointFrame f{};
   f.length = 1.7;
+  // Two triads, each the kernels' a, b, c: the axes of the joints that turn with the section.
+  const Mat3 triad1 = Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Mat3 triad2 = Eigen::AngleAxisd(-1.1, Vec3(-2, 0.5, 1).normalized()).toRotationMatrix();
+  f.a1 = triad1.col(0), f.b1 = triad1.col(1), f.c1 = triad1.col(2);
+  f.a2 = triad2.col(0), f.b2 = triad2.col(1), f.c2 = triad2.col(2);
+  mbrt::turn_joint_axes(node.turn, side, f);
   const Vec3 anchor(0.4, -1.1, 0.9);
   (side == 1 ? f.s1 : f.s2) = node.point;
   (side == 1 ? f.s2 : f.s1) = anchor;
@@ -118,7 +124,7 @@ void check_against_differences(const Trajectory& x, const mbrt::ModalPoint<N>& c
 
 }  // namespace
 
-TEST_CASE("a point joint's rows at a modal body's node move as finite differences of the node's motion") {
+TEST_CASE("a joint's rows at a modal body's node move as finite differences of the node's motion and its section's turn") {
   Trajectory x;
   std::srand(7);
   x.body.St_T.setRandom();
@@ -134,9 +140,21 @@ TEST_CASE("a point joint's rows at a modal body's node move as finite difference
   const auto distance = [](const mbrt::JointFrame& f, const mbrt::BodyMotion& a, const mbrt::BodyMotion& b) {
     return mbrt::distance(f, a, b);
   };
+  const auto revolute = [](const mbrt::JointFrame& f, const mbrt::BodyMotion& a, const mbrt::BodyMotion& b) {
+    return mbrt::revolute(f, a, b);
+  };
+  const auto universal = [](const mbrt::JointFrame& f, const mbrt::BodyMotion& a, const mbrt::BodyMotion& b) {
+    return mbrt::universal(f, a, b);
+  };
+  const auto fixed = [](const mbrt::JointFrame& f, const mbrt::BodyMotion& a, const mbrt::BodyMotion& b) {
+    return mbrt::fixed(f, a, b);
+  };
   for (int side : {1, 2}) {
     check_against_differences<3>(x, c, side, spherical);
     check_against_differences<1>(x, c, side, distance);
+    check_against_differences<5>(x, c, side, revolute);
+    check_against_differences<4>(x, c, side, universal);
+    check_against_differences<6>(x, c, side, fixed);
   }
 }
 
@@ -298,7 +316,7 @@ TEST_CASE("the step holding modal nodes by joints allocates nothing") {
 }
 
 
-TEST_CASE("the generator holds a modal body's node by a point joint, and refuses the joints it cannot") {
+TEST_CASE("the generator holds a modal body's node by a point joint, and refuses the joints it cannot hold there") {
   const std::string beam =
       "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 4, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
       "rho_A: 2.0, rho_J: 0.01}\n";
@@ -316,11 +334,11 @@ TEST_CASE("the generator holds a modal body's node by a point joint, and refuses
                                           "  - {name: prop, type: spherical, body1: ground, body2: boom@tip, point: [1.9, 0, 0]}\n");
   CHECK(off.find("joints.prop") != std::string::npos);
   CHECK(off.find("node 10 of modal body 'boom', which is at (2.000000, 0.000000, 0.000000") != std::string::npos);
-  const std::string revolute = generator_error("name: hinge\n" + beam + "joints:\n" + clamp +
-                                               "  - {name: hinge, type: revolute, body1: ground, body2: boom@tip, "
-                                               "point: [2, 0, 0], axis: [0, 0, 1]}\n");
-  CHECK(revolute.find("a revolute joint attaches to modal body 'boom' at its root: name the body; only spherical and "
-                      "distance joints take one of its nodes") != std::string::npos);
+  const std::string slider = generator_error("name: slider\n" + beam + "joints:\n" + clamp +
+                                             "  - {name: slider, type: prismatic, body1: ground, body2: boom@tip, "
+                                             "point: [2, 0, 0], axis: [0, 0, 1]}\n");
+  CHECK(slider.find("a prismatic joint attaches to modal body 'boom' at its root: name the body; only spherical, "
+                    "distance, revolute, universal and fixed joints take one of its nodes") != std::string::npos);
   // Pinned at both ends along its axis, a beam of bending modes cannot bend
   // without stretching; propped (its frame clamped, unable to turn) it can.
   const std::string pinned = generator_error(

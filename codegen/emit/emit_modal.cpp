@@ -119,9 +119,16 @@ void Emitter::modal_force_load(std::ostringstream& o, const Force& f, const std:
   o << "    l.elastic_energy += e.energy;\n  }\n";
 }
 
-// The kernel sees the frame carrying the node's deformed place at the
-// node's velocity; modal_node_rows then splits its columns between the
-// frame and the modal momenta and adds the node's deformation terms to quad.
+// The kernel sees a rigid body carrying the node's deformed place and its
+// section's axes at their velocities; modal_node_rows then splits its
+// columns between the frame and the modal momenta and adds the node's
+// deformation terms to quad. Point joints (spherical, distance) have no axes
+// to turn.
+static bool turns_axes(const ConstraintBlock& b) {
+  return b.source == ConstraintSource::driver ||
+         (b.joint_type != JointType::spherical && b.joint_type != JointType::distance);
+}
+
 std::string Emitter::modal_node_block(int j) const {
   const ConstraintBlock& b = block(j);
   const auto label = [&](int body, int node) { return node >= 0 ? modal_node_label(body, node) : m_.body_name(body); };
@@ -138,11 +145,14 @@ std::string Emitter::modal_node_block(int j) const {
                              modal_coordinates(m, "modal_q") + ", " + modal_coordinates(m, "modal_p");
     out += "    const mbrt::ModalPointMotion " + x + " = mbrt::modal_point_motion<" + N + ">(" + args + ");\n" +
            "    f.s" + std::to_string(e + 1) + " = " + x + ".point;\n";
+    if (turns_axes(b)) out += "    mbrt::turn_joint_axes(" + x + ".turn, " + std::to_string(e + 1) + ", f);\n";
     motions[e] = "mbrt::BodyMotion{" + pose(i) + ", " + x + ".velocity}";
     columns += "    " + jq(j, i) + " = mbrt::modal_node_rows<" + N + ", " + std::to_string(rows(j)) + ">(" + args + ", " + rows_of(j) +
                "." + (e == 0 ? "J1" : "J2") + ", " + rows_of(j) + ".quad);\n";
   }
-  return out + "    " + rows_of(j) + " = mbrt::" + b.kernel + "(f, " + motions[0] + ", " + motions[1] + ");\n" + columns + "  }\n";
+  const std::string target = b.function ? ",\n        " + driver_function_value(b) : "";
+  return out + "    " + rows_of(j) + " = mbrt::" + b.kernel + "(f, " + motions[0] + ", " + motions[1] + target + ");\n" + columns +
+         "  }\n";
 }
 
 std::string Emitter::modal_node_place(int b, int k) const {

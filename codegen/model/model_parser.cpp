@@ -451,15 +451,16 @@ int read_modal_node(const Value& v, const Model& model, const std::string& name,
   return -1;
 }
 
-// A torque at a modal body's node turns its modes through the node's small
-// rotations, which a structure of 3 coordinates a node does not have.
-void check_node_turns(const Value& v, const Model& model, int body, int node) {
+// A torque at a modal body's node (`what`: a torque, or a joint's) turns its
+// modes through the node's small rotations, which a structure of 3
+// coordinates a node does not have.
+void check_node_turns(const Value& v, const Model& model, int body, int node, const std::string& what = "a torque") {
   if (node < 0) return;
   const ModalSource& source = *modal_source(model, body);
   if (!source.structure || source.structure->coordinates == 6) return;
   fail(v, "node '" + source.structure->nodes[static_cast<size_t>(node)].name + "' of modal body '" + model.body_name(body) +
-              "' has no rotations (coordinates: 3 in " + source.structure->file +
-              "): a torque there would reach only its frame; give 6 coordinates a node");
+              "' has no rotations (coordinates: 3 in " + source.structure->file + "): " + what +
+              " there would reach only its frame; give 6 coordinates a node");
 }
 
 // "ground" or a declared body; returns kGround or the index in model.bodies.
@@ -479,7 +480,8 @@ int read_body_ref(const Value& v, const Model& model, int* node = nullptr) {
       const bool beam = !modal_source(model, body)->structure;
       fail(v, "'" + name + "' is a modal body: name it, and this attaches " +
                   (beam ? "at its root" : "at one of its clamped nodes' places") +
-                  " (only spherical and distance joints, forces, torques, spring_dampers, motor_torque inputs and outputs take " + name + (beam ? "@tip or " + name + "@K)" : "@NODE)"));
+                  " (only spherical, distance, revolute, universal and fixed joints, forces, torques, spring_dampers, motor_torque "
+                  "inputs and outputs take " + name + (beam ? "@tip or " + name + "@K)" : "@NODE)"));
     }
     if (k >= 0) {
       *node = k;
@@ -887,6 +889,22 @@ JointFriction read_joint_friction(const Value& v, JointType type) {
   return out;
 }
 
+// A joint's point: `point`, or where it holds a modal body's node, that
+// node's place (both nodes': the same place).
+Eigen::Vector3d joint_point(const Section& s, const Model& model, const Joint& j, const Value& body2) {
+  if (const auto point = s.find("point")) return read_vector3(*point);
+  if (j.node1 < 0 && j.node2 < 0) return read_vector3(s.get("point"));
+  const Eigen::Vector3d place = j.node2 >= 0 ? modal_node_place(model, j.body2, j.node2) : modal_node_place(model, j.body1, j.node1);
+  if (j.node1 >= 0 && j.node2 >= 0) {
+    const double apart = (modal_node_place(model, j.body1, j.node1) - place).norm();
+    if (apart > 1e-9 * std::max(1.0, place.norm())) {
+      fail(body2, "a " + std::string(type_row(j.type).name) + " joint holds its two nodes together, but they start " +
+                      format_number(apart) + " m apart; move the bodies so that they meet, or join them by a distance joint");
+    }
+  }
+  return place;
+}
+
 Joint parse_joint(const Value& item, const Model& model, std::map<std::string, int>& names_seen) {
   const Section s(item, every_joint_key());
   Joint j;
@@ -912,15 +930,20 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
     fail(body2, "a joint must connect two different bodies (both are '" +
                     model.body_name(j.body1) + "')");
   }
-  // A point joint holds a modal body's node where it deforms to; the
-  // others would need its section's small rotations too.
+  // A joint holds a modal body's node where it deforms to, and one with axes
+  // turns them with its section's small rotations; sliding along or about
+  // a section is not modelled.
   const bool point_joint = j.type == JointType::spherical || j.type == JointType::distance;
+  const bool at_nodes = point_joint || j.type == JointType::revolute || j.type == JointType::universal || j.type == JointType::fixed;
   for (const auto& [value, body, node] : {std::tuple{body1, j.body1, j.node1}, std::tuple{body2, j.body2, j.node2}}) {
-    if (node < 0 || point_joint) continue;
-    const bool beam = !modal_source(model, body)->structure;
-    fail(value, "a " + type.node.Scalar() + " joint attaches to modal body '" + model.body_name(body) + "' " +
-                    (beam ? "at its root" : "at one of its clamped nodes' places") +
-                    ": name the body; only spherical and distance joints take one of its nodes");
+    if (node < 0) continue;
+    if (!at_nodes) {
+      const bool beam = !modal_source(model, body)->structure;
+      fail(value, "a " + type.node.Scalar() + " joint attaches to modal body '" + model.body_name(body) + "' " +
+                      (beam ? "at its root" : "at one of its clamped nodes' places") +
+                      ": name the body; only spherical, distance, revolute, universal and fixed joints take one of its nodes");
+    }
+    if (!point_joint) check_node_turns(value, model, body, node, "a " + type.node.Scalar() + " joint's torque");
   }
 
   switch (j.type) {
@@ -928,10 +951,16 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
     case JointType::cylindrical:
     case JointType::prismatic:
     case JointType::planar:
-      j.point = read_vector3(s.get("point"));
+      j.point = joint_point(s, model, j, body2);
       j.axis = read_axis(s.get("axis"));
       if (auto x = s.find("armature")) j.armature = read_non_negative(*x);
-      if (auto x = s.find("friction")) j.friction = read_joint_friction(*x, j.type);
+      if (auto x = s.find("friction")) {
+        if (j.node1 >= 0 || j.node2 >= 0) {
+          fail(*x, "joint '" + j.name + "' holds a modal body's node: friction there is not modelled; drop it, or put the "
+                   "joint at the body's root");
+        }
+        j.friction = read_joint_friction(*x, j.type);
+      }
       break;
     case JointType::screw: {
       j.point = read_vector3(s.get("point"));
@@ -942,7 +971,7 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
       break;
     }
     case JointType::universal: {
-      j.point = read_vector3(s.get("point"));
+      j.point = joint_point(s, model, j, body2);
       j.axis1 = read_axis(s.get("axis1"));
       const Value axis2 = s.get("axis2");
       j.axis2 = read_axis(axis2);
@@ -971,25 +1000,8 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
       break;
     }
     case JointType::spherical:
-      if (const auto point = s.find("point")) {
-        j.point = read_vector3(*point);
-      } else if (j.node1 >= 0 && j.node2 >= 0) {
-        j.point = modal_node_place(model, j.body2, j.node2);
-        const Eigen::Vector3d other = modal_node_place(model, j.body1, j.node1);
-        if ((other - j.point).norm() > 1e-9 * std::max(1.0, j.point.norm())) {
-          fail(body2, "a spherical joint holds its two nodes together, but they start " + format_number((other - j.point).norm()) +
-                          " m apart; move the bodies so that they meet, or join them by a distance joint");
-        }
-      } else if (j.node2 >= 0) {
-        j.point = modal_node_place(model, j.body2, j.node2);
-      } else if (j.node1 >= 0) {
-        j.point = modal_node_place(model, j.body1, j.node1);
-      } else {
-        j.point = read_vector3(s.get("point"));
-      }
-      break;
     case JointType::fixed:
-      j.point = read_vector3(s.get("point"));
+      j.point = joint_point(s, model, j, body2);
       break;
     case JointType::velocity_toward:
       j.point1 = read_vector3(s.get("point1"));
@@ -1062,8 +1074,10 @@ Contact parse_unilateral_contact(const Value& item, const Model& model, std::map
   return c;
 }
 
-// A joint named by `v` whose type is one of `types`; returns its index.
-int read_joint_ref(const Value& v, const Model& model, const std::vector<JointType>& types, const std::string& role) {
+// A joint named by `v` whose type is one of `types`; returns its index. Of
+// the joints that hold a modal body's node, only drivers take one.
+int read_joint_ref(const Value& v, const Model& model, const std::vector<JointType>& types, const std::string& role,
+                   bool driver = false) {
   const std::string joint_name = read_string(v, "a joint name");
   for (std::size_t i = 0; i < model.joints.size(); ++i) {
     const Joint& j = model.joints[i];
@@ -1072,6 +1086,9 @@ int read_joint_ref(const Value& v, const Model& model, const std::vector<JointTy
       std::string names;
       for (JointType t : types) names += (names.empty() ? "" : " or ") + std::string(type_row(t).name);
       fail(v, role + " needs a " + names + " joint; '" + joint_name + "' is not one");
+    }
+    if (!driver && (j.node1 >= 0 || j.node2 >= 0)) {
+      fail(v, "joint '" + joint_name + "' holds a modal body's node: " + role + " on it is not modelled (a driver is)");
     }
     return static_cast<int>(i);
   }
@@ -1252,7 +1269,7 @@ Driver parse_driver(const Value& item, const Model& model, std::map<std::string,
     const std::vector<JointType> joints = d.type == DriverType::joint_angle
                                               ? std::vector{JointType::revolute, JointType::cylindrical}
                                               : std::vector{JointType::prismatic, JointType::cylindrical};
-    d.joint = read_joint_ref(s.get("joint"), model, joints, "a " + type.node.Scalar() + " driver");
+    d.joint = read_joint_ref(s.get("joint"), model, joints, "a " + type.node.Scalar() + " driver", true);
   }
   d.function = parse_function(s.get("function"));
   return d;

@@ -12,6 +12,8 @@
 #include <amd.h>
 #include <camd.h>
 
+#include <mbrt/modal_body.hpp>
+
 #include "constraint_evaluation.hpp"
 #include "parameters.hpp"
 #include "planar_scene.hpp"
@@ -344,6 +346,8 @@ std::vector<ConstraintBlock> constraint_blocks(const Model& model) {
       const size_t joint = static_cast<size_t>(d.joint);
       block.body1 = model.joints[joint].body1;
       block.body2 = model.joints[joint].body2;
+      block.node1 = model.joints[joint].node1;
+      block.node2 = model.joints[joint].node2;
       block.frame = blocks[joint].frame;
     }
     rows += block.rows;
@@ -524,7 +528,8 @@ static void check_absolute_friction(const Model& model) {
 // The staggered schemes that step the frame with its reduced mass and the
 // modes' momentum take them.
 // The modal columns of the constraint Jacobian at t = 0 (undeformed): a
-// point joint at a modal body's node moves with the node's modes, J_v R Psi
+// joint at a modal body's node moves with the node's modes and turns with
+// its section's, J_v R (Psi + [s]x Theta) + J_w Theta
 // (include/mbrt/modal_body.hpp, modal_node_rows), N columns per modal body.
 static Eigen::MatrixXd node_columns(const Model& model, const Analysis& a, const Eigen::MatrixXd& B) {
   std::vector<int> first_column;
@@ -537,8 +542,10 @@ static Eigen::MatrixXd node_columns(const Model& model, const Analysis& a, const
       const int m = a.bodies[static_cast<size_t>(body)].modal;
       const ModalPlan& p = a.modal[static_cast<size_t>(m)];
       const Eigen::Matrix3d R = mbrt::rotation_matrix(model.bodies[static_cast<size_t>(body)].orientation);
+      const ModalNode n = modal_node(p, node);
       out.block(c.first_row, first_column[static_cast<size_t>(m)], c.rows, p.modes) =
-          B.block(c.first_row, 6 * body, c.rows, 3) * R * modal_node(p, node).displacement;
+          B.block(c.first_row, 6 * body, c.rows, 3) * R * (n.displacement + mbrt::skew(n.point) * n.rotation) +
+          B.block(c.first_row, 6 * body + 3, c.rows, 3) * n.rotation;
     }
   }
   // Round-off leaves traces where a bending mode moves a node along the beam
@@ -557,7 +564,7 @@ static Eigen::MatrixXd node_columns(const Model& model, const Analysis& a, const
 // turning it to follow the deflection moves the far end along the axis by
 // theta^2 L / 2, which its modes cannot), the body could not bend without
 // breaking the joints; the step would lock it or fail. d2 comes from the
-// rows at +-eps z, the node joints' points moved with the modes.
+// rows at +-eps z, the node joints' points moved and axes turned with the modes.
 static void refuse_inconsistent_node_joints(const Model& model, const Analysis& a, const Eigen::MatrixXd& B) {
   const auto kernel = [](const Eigen::MatrixXd& m) {
     Eigen::FullPivLU<Eigen::MatrixXd> lu(m);
@@ -579,12 +586,15 @@ static void refuse_inconsistent_node_joints(const Model& model, const Analysis& 
     }
     std::vector<ConstraintBlock> blocks = a.constraints;
     for (ConstraintBlock& c : blocks) {
-      for (const auto& [body, node, point] : {std::tuple{c.body1, c.node1, &c.frame.s1}, std::tuple{c.body2, c.node2, &c.frame.s2}}) {
+      for (const auto& [body, node, side] : {std::tuple{c.body1, c.node1, 1}, std::tuple{c.body2, c.node2, 2}}) {
         if (node < 0) continue;
         const int m = a.bodies[static_cast<size_t>(body)].modal;
         const ModalPlan& p = a.modal[static_cast<size_t>(m)];
         const ModalNode n = modal_node(p, node);
-        *point = n.point + n.displacement * x.segment(first_column[static_cast<size_t>(m)], p.modes);
+        const Eigen::VectorXd q = x.segment(first_column[static_cast<size_t>(m)], p.modes);
+        (side == 1 ? c.frame.s1 : c.frame.s2) = n.point + n.displacement * q;
+        const Eigen::Vector3d theta = n.rotation * q;
+        mbrt::turn_joint_axes(mbrt::section_turn(theta, Eigen::Vector3d::Zero()).C, side, c.frame);
       }
     }
     return evaluate_constraints(moved, blocks, 0.0).phi;

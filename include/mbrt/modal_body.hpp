@@ -28,6 +28,7 @@
 
 #include "mbrt/body_state.hpp"
 #include "mbrt/forces.hpp"
+#include "mbrt/joints.hpp"
 #include "mbrt/rotation.hpp"
 
 namespace mbrt {
@@ -278,12 +279,38 @@ inline Eigen::Matrix<double, N, 1> modal_point_torque(const ModalPoint<N>& c, co
   return c.rotation.transpose() * tb;
 }
 
-// Node c as a force element sees it: its deformed place in body axes, and a
-// velocity of the frame that carries it there (the frame's, plus the node's
-// deformation rate R Psi qdot), so that the element's carried point is the
-// node's place and velocity.
+// A node's section turns by the small rotation theta = Theta q. The joints
+// at it carry their axes through C(theta), the rotation of Gibbs vector
+// theta / 2 (Cayley's map; to first order the turn by theta), whose angular
+// velocity in body axes is exactly omega = T(theta) theta_dot with
+// T = lambda (I + [theta]x / 2), lambda = 1 / (1 + |theta|^2 / 4).
+struct SectionTurn {
+  Mat3 C;         // the section's axes in the frame's
+  Mat3 T;         // omega = T theta_dot
+  Vec3 omega;     // the section's angular velocity relative to the frame, body axes
+  Vec3 bias;      // omega_dot - T theta_ddot = -lambda (theta . theta_dot) omega / 2
+};
+
+inline SectionTurn section_turn(const Vec3& theta, const Vec3& theta_dot) noexcept {
+  const double lambda = 1.0 / (1.0 + 0.25 * theta.squaredNorm());
+  const Mat3 X = skew(theta);
+  SectionTurn t;
+  t.C = Mat3::Identity() + lambda * (X + 0.5 * X * X);
+  t.T = lambda * (Mat3::Identity() + 0.5 * X);
+  t.omega = t.T * theta_dot;
+  t.bias = (-0.5 * lambda * theta.dot(theta_dot)) * t.omega;
+  return t;
+}
+
+// Node c as a force element or a joint sees it: its deformed place and its
+// section's axes in body axes, and a velocity of a rigid body that carries
+// that place and those axes as the node moves: the section's angular velocity
+// w + omega, and the frame's velocity with the node's deformation rate
+// R (Psi qdot - omega x place), so that the carried place moves at the node's
+// velocity.
 struct ModalPointMotion {
   Vec3 point;
+  Mat3 turn;
   BodyVelocity velocity;
 };
 
@@ -292,7 +319,16 @@ inline ModalPointMotion modal_point_motion(const ModalBody<N>& b, const ModalPoi
                                            const BodyVelocity& vel, const Eigen::Matrix<double, N, 1>& q,
                                            const Eigen::Matrix<double, N, 1>& p) noexcept {
   const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, pose.R, vel.v, vel.w, q, p);
-  return {c.point + c.displacement * q, {vel.v + pose.R * (c.displacement * qd), vel.w}};
+  const Vec3 point = c.point + c.displacement * q;
+  const SectionTurn turn = section_turn(c.rotation * q, c.rotation * qd);
+  return {point, turn.C, {vel.v + pose.R * (c.displacement * qd - turn.omega.cross(point)), vel.w + turn.omega}};
+}
+
+// The joint frame f with the axes on a node's side (side 1 or 2) carried by
+// its section.
+inline void turn_joint_axes(const Mat3& turn, int side, JointFrame& f) noexcept {
+  Vec3* axes[2][3] = {{&f.a1, &f.b1, &f.c1}, {&f.a2, &f.b2, &f.c2}};
+  for (Vec3* a : axes[side - 1]) *a = turn * *a;
 }
 
 // Jq S^T: what the momentum column Jq takes from the frame's columns. The
@@ -309,30 +345,37 @@ inline Eigen::Matrix<double, K, 6> modal_frame_share(const ModalBody<N>& b, cons
   return share;
 }
 
-// Rows of a point constraint (spherical, distance) at node c of a modal
-// body, from a kernel's rows for the frame carrying the node's deformed
-// place at the node's velocity (modal_point_motion): J holds the frame's
-// columns, J_v = J's first three the place's. The node moves by
-// x_ddot = v_dot + R (w_dot x s + Psi q_ddot) + R (w x (w x s) + 2 w x Psi q_dot),
-// and with q_ddot = p_dot - S^T (v_dot, w_dot) + St^T (w x R^T v) - dSr^T(q_dot) w
-// (dSr^T the part of Sr(q)^T linear in q) the rows gain the momentum
-// column Jq = J_v R Psi (returned in the first N of 6 columns), the frame's
-// columns lose Jq S^T, and quad gains J_v times what the kernel's rigid
-// carried point leaves out.
+// Rows of a joint at node c of a modal body, from a kernel's rows J (frame's
+// columns: J_v the place's velocity, J_w the section's angular velocity) for
+// the rigid body modal_point_motion describes. With omega = T Theta qdot
+// (section_turn) and s the deformed place, the kernel's velocity columns
+// read J_v (v + R (Psi qdot + s x omega)) + J_w (w + omega), so the rows gain
+// the momentum column Jq = J_v R (Psi + [s]x T Theta) + J_w T Theta
+// (returned in the first N of 6 columns) and the frame's columns lose
+// Jq S^T (modal_frame_share). The place accelerates at
+//   v_dot + R (w_dot x s + Psi q_ddot + w x (w x s) + 2 w x Psi q_dot),
+// the axes turn at w_dot + T Theta q_ddot + bias + w x omega; with
+// q_ddot = p_dot - S^T (v_dot, w_dot) + St^T (w x R^T v) - dSr^T(q_dot) w
+// (dSr^T the part of Sr(q)^T linear in q) quad gains what the kernel, which
+// turns both at w + omega, leaves out.
 template <int N, int K>
 inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const ModalPoint<N>& c, const BodyPose& pose,
                                                    const BodyVelocity& vel, const Eigen::Matrix<double, N, 1>& q,
                                                    const Eigen::Matrix<double, N, 1>& p, Eigen::Matrix<double, K, 6>& J,
                                                    Eigen::Matrix<double, K, 1>& quad) noexcept {
   const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, pose.R, vel.v, vel.w, q, p);
-  const Eigen::Matrix<double, K, 3> Jv = J.template leftCols<3>();
+  const Eigen::Matrix<double, K, 3> Jv = J.template leftCols<3>(), Jw = J.template rightCols<3>();
+  const Vec3 s = c.point + c.displacement * q, u_dot = c.displacement * qd, &w = vel.w;
+  const SectionTurn turn = section_turn(c.rotation * q, c.rotation * qd);
+  const Eigen::Matrix<double, 3, N> turn_columns = turn.T * c.rotation;
   Eigen::Matrix<double, K, 6> Jq = Eigen::Matrix<double, K, 6>::Zero();
-  Jq.template leftCols<N>() = Jv * pose.R * c.displacement;
+  Jq.template leftCols<N>() = Jv * (pose.R * (c.displacement + skew(s) * turn_columns)) + Jw * turn_columns;
   J -= modal_frame_share<N, K>(b, pose.R, q, Jq);
-  const Vec3 u_dot = c.displacement * qd;
   const Eigen::Matrix<double, N, 1> q_ddot_bias =
-      b.St_T * vel.w.cross(pose.R.transpose() * vel.v) - (turn_coupling_transpose<N>(b, qd) - b.Sr_T) * vel.w;
-  quad += Jv * (pose.R * (2.0 * vel.w.cross(u_dot) + c.displacement * q_ddot_bias));
+      b.St_T * w.cross(pose.R.transpose() * vel.v) - (turn_coupling_transpose<N>(b, qd) - b.Sr_T) * w;
+  const Vec3& omega = turn.omega;
+  const Vec3 place = 2.0 * w.cross(u_dot - omega.cross(s)) - omega.cross(omega.cross(s)) - turn.bias.cross(s);
+  quad += Jw * (w.cross(omega) + turn.bias) + Jv * (pose.R * place) + Jq.template leftCols<N>() * q_ddot_bias;
   return Jq;
 }
 

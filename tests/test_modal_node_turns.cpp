@@ -1,0 +1,329 @@
+// Joints that turn with a modal body's section (revolute, universal, fixed)
+// at its nodes (docs/flexible.md). Three clamped beams of six modes, settled
+// under loads that the joints pass as forces and torques, against the same
+// six modes written down independently: Euler-Bernoulli's cantilever modes
+// in closed form (Ritz, with the joints' conditions on them), which also
+// shows how far six modes stand from the beam's closed forms; a cantilever
+// carrying a tool's mass and rotary inertia against its characteristic
+// equation; equilibrium of the joints' reactions. A free beam carrying a
+// tool and a flap by such joints keeps the bodies' energy, momentum and
+// angular momentum, at second order in the step, allocating nothing.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "modal_joint_turns.hpp"
+#include "modal_joint_turns_blajer.hpp"
+#include "modal_joint_turns_fine.hpp"
+#include "generator_error.hpp"
+#include "modal_momenta.hpp"
+#include "modal_node_turns.hpp"
+#include "modal_node_turns_baumgarte.hpp"
+#include "modal_node_turns_blajer.hpp"
+#include "step_allocations.hpp"
+
+namespace {
+
+using mbrt::Vec3;
+
+// A cantilever's first n bending modes in closed form (Euler-Bernoulli;
+// e.g. Blevins 1979, Formulas for Natural Frequency and Mode Shape, table
+// 8-1): cos(bL) cosh(bL) = -1, unit modal mass, their values and slopes at
+// x by rho_A and length; what a modal body of n modes represents, to its
+// elements' discretization error.
+class CantileverModes {
+ public:
+  CantileverModes(int n, double EI, double rho_A, double L) : EI_(EI), rho_A_(rho_A), L_(L) {
+    for (int k = 1; k <= n; ++k) {
+      double lo = k == 1 ? 1.0 : (k - 0.5) * std::numbers::pi - 1.0, hi = k == 1 ? 2.5 : (k - 0.5) * std::numbers::pi + 1.0;
+      const auto f = [](double b) { return std::cos(b) * std::cosh(b) + 1.0; };
+      for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (std::signbit(f(lo)) == std::signbit(f(mid)) ? lo : hi) = mid;
+      }
+      beta_.push_back(0.5 * (lo + hi) / L);
+    }
+  }
+  int size() const { return static_cast<int>(beta_.size()); }
+  double omega_squared(int k) const { return EI_ * std::pow(beta_[static_cast<size_t>(k)], 4) / rho_A_; }
+  // Value (d = 0) or slope (d = 1) of mode k at x; sqrt(rho_A L) of the
+  // classic shape is its unit modal mass (its mean square is 1).
+  double shape(int k, double x, int d = 0) const {
+    const double b = beta_[static_cast<size_t>(k)], bL = b * L_, s = (std::cosh(bL) + std::cos(bL)) / (std::sinh(bL) + std::sin(bL));
+    const double scale = 1.0 / std::sqrt(rho_A_ * L_);
+    if (d == 0) return scale * (std::cosh(b * x) - std::cos(b * x) - s * (std::sinh(b * x) - std::sin(b * x)));
+    return scale * b * (std::sinh(b * x) + std::sin(b * x) - s * (std::cosh(b * x) - std::cos(b * x)));
+  }
+  // Static response: the modal coordinates under a force F and a moment M at x.
+  Eigen::VectorXd loaded(double x, double F, double M) const {
+    Eigen::VectorXd q(size());
+    for (int k = 0; k < size(); ++k) q[k] = (shape(k, x) * F + shape(k, x, 1) * M) / omega_squared(k);
+    return q;
+  }
+  double at(const Eigen::VectorXd& q, double x, int d = 0) const {
+    double y = 0;
+    for (int k = 0; k < size(); ++k) y += q[k] * shape(k, x, d);
+    return y;
+  }
+  // Held at the tip too (value and slope): the modes' combinations that
+  // keep both, as columns, orthonormal.
+  Eigen::MatrixXd clamped_tip() const {
+    Eigen::MatrixXd C(2, size());
+    for (int k = 0; k < size(); ++k) C(0, k) = shape(k, L_), C(1, k) = shape(k, L_, 1);
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(C);
+    return Eigen::HouseholderQR<Eigen::MatrixXd>(lu.kernel()).householderQ() * Eigen::MatrixXd::Identity(size(), size() - 2);
+  }
+  Eigen::VectorXd stiffness() const {
+    Eigen::VectorXd k(size());
+    for (int i = 0; i < size(); ++i) k[i] = omega_squared(i);
+    return k;
+  }
+
+ private:
+  std::vector<double> beta_;
+  double EI_, rho_A_, L_;
+};
+
+// The cantilever with a tip body of mass M and rotary inertia J: the lowest
+// root of the 2 x 2 determinant of its tip conditions, EI w'' = J w^2 w' and
+// EI w''' = -M w^2 w, on w = A (cos - cosh)(bx) + B (sin - sinh)(bx).
+double tip_body_frequency(double EI, double rho_A, double L, double M, double J) {
+  const auto det = [&](double w) {
+    const double b = std::pow(rho_A * w * w / EI, 0.25), c = std::cos(b * L), s = std::sin(b * L), ch = std::cosh(b * L),
+                 sh = std::sinh(b * L);
+    const Eigen::Vector2d W(c - ch, s - sh), W1 = b * Eigen::Vector2d(-s - sh, c - ch), W2 = b * b * Eigen::Vector2d(-c - ch, -s - sh),
+                          W3 = b * b * b * Eigen::Vector2d(s - sh, -c - ch);
+    Eigen::Matrix2d m;
+    m.row(0) = EI * W2 - J * w * w * W1;
+    m.row(1) = -EI * W3 - M * w * w * W;
+    return m.determinant();
+  };
+  double lo = 1e-3 * std::sqrt(EI / (rho_A * std::pow(L, 4))), step = lo;
+  while (std::signbit(det(lo)) == std::signbit(det(lo + step))) lo += step;
+  double hi = lo + step;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (std::signbit(det(lo)) == std::signbit(det(mid)) ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Settled: the mean over whole swings (up-crossings of the tail's mean) in
+// the last 4 s, where light damping has not yet stilled the tool's swing.
+double settled(const std::vector<double>& y, double h) {
+  const size_t tail = y.size() - static_cast<size_t>(std::lround(4.0 / h));
+  double mean = 0;
+  for (size_t i = tail; i < y.size(); ++i) mean += y[i] / static_cast<double>(y.size() - tail);
+  size_t first = 0, last = 0;
+  for (size_t i = tail + 1; i < y.size(); ++i) {
+    if (y[i - 1] < mean && y[i] >= mean) (first == 0 ? first : last) = i;
+  }
+  if (last <= first) return mean;
+  double sum = 0;
+  for (size_t i = first; i < last; ++i) sum += y[i];
+  return sum / static_cast<double>(last - first);
+}
+
+// From the up-crossings of the settled value in the first `window` s,
+// undamped: stiffness-proportional damping c K gives mode k the ratio
+// c w_k / 2 (the joints add no stiffness, so their modes keep C = c K).
+double undamped_frequency(const std::vector<double>& y, double settled_value, double h, double c, double window) {
+  std::vector<double> crossings;
+  for (size_t i = 1; i < y.size() && static_cast<double>(i) * h < window; ++i) {
+    if (y[i - 1] < settled_value && y[i] >= settled_value) {
+      crossings.push_back(h * (static_cast<double>(i) - 1 + (settled_value - y[i - 1]) / (y[i] - y[i - 1])));
+    }
+  }
+  REQUIRE(crossings.size() >= 5);
+  const double damped = 2 * std::numbers::pi * static_cast<double>(crossings.size() - 1) / (crossings.back() - crossings.front());
+  const double z = c * damped / 2;
+  return damped / std::sqrt(1 - z * z);
+}
+
+// The section's turn about z from a body_pose output's Euler parameters.
+double turn_z(const double* pose) { return 2 * std::atan2(pose[6], pose[3]); }
+
+struct Turns {
+  double middle_a, tip_b, slope_b, tool_turn, tip_c, slope_c;
+  double frequency_a, frequency_b;
+  mbrt::JointReaction clamp_a, tip_a, mount, hold;
+};
+
+// One model file in three schemes: the same outputs and joints.
+namespace turns = mbrt::models::modal_node_turns;
+
+template <class State, class Outputs, class Reactions, class Step, class Out, class React>
+Turns settle_turns(State s, double h, Step step, Out outputs, React reactions) {
+  Outputs y{};
+  std::vector<double> a, b, b_turn, t_turn, c, c_turn;
+  const int steps = static_cast<int>(std::lround(15.0 / h));
+  for (int i = 0; i < steps; ++i) {
+    REQUIRE(step(s) == mbrt::StepStatus::ok);
+    outputs(s, y);
+    a.push_back(y[turns::output::middle_a + 1]);
+    b.push_back(y[turns::output::tip_b + 1]), b_turn.push_back(turn_z(&y[turns::output::tip_b]));
+    t_turn.push_back(turn_z(&y[turns::output::tool_pose]));
+    c.push_back(y[turns::output::tip_c + 1]), c_turn.push_back(turn_z(&y[turns::output::tip_c]));
+  }
+  Reactions r;
+  reactions(s, r);
+  Turns out{settled(a, h), settled(b, h), settled(b_turn, h), settled(t_turn, h), settled(c, h), settled(c_turn, h), 0, 0,
+            r[turns::constraint::clamp_a], r[turns::constraint::tip_a], r[turns::constraint::mount], r[turns::constraint::hold]};
+  // boom_a swings at 40 Hz, damped by 13 % of critical; the tool at 3 Hz.
+  out.frequency_a = undamped_frequency(a, out.middle_a, h, 0.001, 0.2);
+  out.frequency_b = undamped_frequency(b, out.tip_b, h, 0.001, 3.0);
+  return out;
+}
+
+#define SETTLE_TURNS(NS)                                                                                          \
+  settle_turns<mbrt::models::NS::State, mbrt::models::NS::Outputs, mbrt::models::NS::Reactions>(                  \
+      mbrt::models::NS::initial_state(), mbrt::models::NS::kStep, [](auto& s) { return mbrt::models::NS::step(s); }, \
+      [](const auto& s, auto& y) { mbrt::models::NS::outputs(s, y); }, [](const auto& s, auto& r) { mbrt::models::NS::reactions(s, r); })
+
+}  // namespace
+
+TEST_CASE("beams held at nodes by fixed and revolute joints settle and swing as their six modes written in closed form") {
+  const double EI = 100.0, rho_A = 1.0, L = 1.0, P = 2.0, tau = 1.0, F = 1.0, d = 0.5;
+  const CantileverModes modes(6, EI, rho_A, L);
+  // boom_a, clamped at both ends: the modes that keep the tip still, loaded at the middle.
+  const Eigen::MatrixXd Z = modes.clamped_tip();
+  const Eigen::MatrixXd K = Z.transpose() * modes.stiffness().asDiagonal() * Z;
+  Eigen::VectorXd middle_load(modes.size());
+  for (int k = 0; k < modes.size(); ++k) middle_load[k] = P * modes.shape(k, L / 2);
+  const double middle_a = modes.at(Z * K.ldlt().solve(Z.transpose() * middle_load), L / 2);
+  const double frequency_a = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K).eigenvalues().minCoeff());
+  // boom_b turned at its tip; boom_c pushed at its tip and turned by the arm's F d.
+  const Eigen::VectorXd b = modes.loaded(L, 0, tau), c = modes.loaded(L, F, F * d);
+  const double frequency_b = tip_body_frequency(EI, rho_A, L, 0.5, 0.02);
+  const std::array<Turns, 3> runs = {SETTLE_TURNS(modal_node_turns), SETTLE_TURNS(modal_node_turns_baumgarte),
+                                     SETTLE_TURNS(modal_node_turns_blajer)};
+  for (const Turns& r : runs) {
+    MESSAGE("clamped at both ends: middle " << r.middle_a << " m (six modes " << middle_a << ", Euler-Bernoulli " << P * L * L * L / (192 * EI)
+                                            << "), first frequency " << r.frequency_a << " rad/s (" << frequency_a << ", "
+                                            << 22.3733 * std::sqrt(EI / (rho_A * L * L * L * L)) << ")");
+    MESSAGE("tool turned: tip " << r.tip_b << " m, turned " << r.slope_b << " rad, the tool " << r.tool_turn << " (six modes "
+                                << modes.at(b, L) << ", " << modes.at(b, L, 1) << "; Euler-Bernoulli " << tau * L * L / (2 * EI) << ", "
+                                << tau * L / EI << "), first frequency " << r.frequency_b << " rad/s (tip body's equation "
+                                << frequency_b << ")");
+    MESSAGE("arm held by a driver: tip " << r.tip_c << " m, turned " << r.slope_c << " rad (six modes " << modes.at(c, L) << ", "
+                                         << modes.at(c, L, 1) << "; Euler-Bernoulli " << F * L * L * L / (3 * EI) + F * d * L * L / (2 * EI)
+                                         << ", " << F * L * L / (2 * EI) + F * d * L / EI << "), driver torque "
+                                         << r.hold.torque.transpose());
+    // The same six modes: to the elements' discretization, 0.5 %.
+    CHECK(r.middle_a == doctest::Approx(middle_a).epsilon(0.005));
+    CHECK(r.frequency_a == doctest::Approx(frequency_a).epsilon(0.005));
+    CHECK(r.tip_b == doctest::Approx(modes.at(b, L)).epsilon(0.005));
+    CHECK(r.slope_b == doctest::Approx(modes.at(b, L, 1)).epsilon(0.005));
+    CHECK(r.tip_c == doctest::Approx(modes.at(c, L)).epsilon(0.005));
+    CHECK(r.slope_c == doctest::Approx(modes.at(c, L, 1)).epsilon(0.005));
+    // The fixed joint turns the tool with the section.
+    CHECK(r.tool_turn == doctest::Approx(r.slope_b).epsilon(1e-6));
+    // A tip body's mass and rotary inertia: the first mode is well inside six.
+    CHECK(r.frequency_b == doctest::Approx(frequency_b).epsilon(0.003));
+    // Equilibrium: the clamps share P (boom_a is still); the mount holds the
+    // tool against tau and the driver the arm against F d, to what is left
+    // of the tool's and the arm's swing (1 %).
+    CHECK(r.clamp_a.force.y() + r.tip_a.force.y() == doctest::Approx(-P).epsilon(1e-6));
+    CHECK(r.mount.torque.z() == doctest::Approx(-tau).epsilon(0.01));
+    CHECK(std::abs(r.hold.torque.z()) == doctest::Approx(F * d).epsilon(0.01));
+  }
+}
+
+namespace {
+
+using modal_momenta::Conservation;
+
+template <class State, class Step, class Energy>
+Conservation joint_turns_errors(const State& start, double h, Step step, Energy energy) {
+  const modal_momenta::ModalBeamMass rod({1.5, 2.0e5, 400.0, 150.0, 250.0, 2.0, 0.01, 12}, 4);
+  // The rigid bodies' masses and inertias (tests/models/modal_joint_turns.yaml).
+  const std::array<double, 2> mass = {0.4, 0.3};
+  const std::array<Vec3, 2> inertia = {Vec3(0.002, 0.003, 0.004), Vec3(0.02, 0.02, 0.01)};
+  const auto momenta = [&](const State& x) {
+    std::array<Vec3, 2> m = rod.momenta(x.rigid[0], x.modal_q[0].head(4), x.modal_p[0].head(4));
+    for (size_t i = 0; i < 2; ++i) {
+      const mbrt::RigidState& b = x.rigid[i + 1];
+      const mbrt::Mat3 R = Eigen::Quaterniond(b.p[0], b.p[1], b.p[2], b.p[3]).toRotationMatrix();
+      m[0] += mass[i] * b.v;
+      m[1] += mass[i] * b.r.cross(b.v) + R * inertia[i].cwiseProduct(b.w);
+    }
+    return m;
+  };
+  return modal_momenta::conservation_errors(start, step, energy, momenta, h);
+}
+
+#define JOINT_TURNS_ERRORS(NS)                                                                                          \
+  joint_turns_errors(mbrt::models::NS::initial_state(), mbrt::models::NS::kStep, [](auto& s) { return mbrt::models::NS::step(s); }, \
+                     [](const auto& s) { return mbrt::models::NS::energy(s).total(); })
+
+}  // namespace
+
+TEST_CASE("a free modal body carrying bodies by fixed and revolute joints at its nodes keeps energy, momentum and angular momentum") {
+  const Conservation pcst = JOINT_TURNS_ERRORS(modal_joint_turns);
+  const Conservation blajer = JOINT_TURNS_ERRORS(modal_joint_turns_blajer);
+  const Conservation fine = JOINT_TURNS_ERRORS(modal_joint_turns_fine);
+  for (const Conservation& c : {pcst, blajer}) {
+    MESSAGE("10 s at 1 ms: relative errors of energy " << c.energy << ", momentum " << c.momentum << ", angular momentum "
+                                                       << c.angular_momentum << "; largest modal coordinate " << c.largest_q);
+    CHECK(c.largest_q > 1e-3);  // the joints do bend it
+    CHECK(c.energy < 2e-4);
+    CHECK(c.momentum < 5e-4);
+    CHECK(c.angular_momentum < 5e-3);
+  }
+  MESSAGE("staggered-pcst at 0.25 ms: " << fine.energy << ", " << fine.momentum << ", " << fine.angular_momentum);
+  // A quarter of the step: second order, as a wrong column or quadratic
+  // term at the nodes would leave an error the step does not shrink.
+  CHECK(fine.energy < pcst.energy / 6);
+  CHECK(fine.momentum < pcst.momentum / 6);
+  CHECK(fine.angular_momentum < pcst.angular_momentum / 6);
+}
+
+TEST_CASE("the step holding modal nodes by joints that turn allocates nothing") {
+  struct Pcst {
+    using State = mbrt::models::modal_joint_turns::State;
+    using Workspace = mbrt::models::modal_joint_turns::Workspace;
+    static State initial_state() { return mbrt::models::modal_joint_turns::initial_state(); }
+    static mbrt::StepStatus step(State& s, Workspace& w) { return mbrt::models::modal_joint_turns::step(s, w); }
+  };
+  struct Blajer {
+    using State = mbrt::models::modal_joint_turns_blajer::State;
+    using Workspace = mbrt::models::modal_joint_turns_blajer::Workspace;
+    static State initial_state() { return mbrt::models::modal_joint_turns_blajer::initial_state(); }
+    static mbrt::StepStatus step(State& s, Workspace& w) { return mbrt::models::modal_joint_turns_blajer::step(s, w); }
+  };
+  CHECK(allocations_in<Pcst>(2000) == 0);
+  CHECK(allocations_in<Blajer>(2000) == 0);
+}
+
+TEST_CASE("the generator turns revolute, universal and fixed joints with a modal node's section, and refuses what it cannot") {
+  const std::string beam =
+      "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 4, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
+      "rho_A: 2.0, rho_J: 0.01}\n  - {name: arm, mass: 1.0, inertia: [0.01, 0.01, 0.01], position: [2.5, 0, 0]}\n";
+  const std::string clamp = "  - {name: clamp, type: fixed, body1: ground, body2: boom, point: [0, 0, 0]}\n";
+  const auto with = [&](const std::string& joint, const std::string& more = "") {
+    return generator_error("name: turns\n" + beam + "joints:\n" + clamp + joint + more);
+  };
+  // The node's place is the joint's point unless one is given.
+  const std::string hinge = "  - {name: hinge, type: revolute, body1: boom@tip, body2: arm, axis: [0, 0, 1]}\n";
+  CHECK(with(hinge) == "");
+  CHECK(with("  - {name: hinge, type: revolute, body1: boom@tip, body2: arm, point: [2, 0, 0], axis: [0, 0, 1]}\n") == "");
+  CHECK(with("  - {name: cross, type: universal, body1: boom@7, body2: arm, axis1: [0, 0, 1], axis2: [0, 1, 0]}\n") == "");
+  CHECK(with("  - {name: weld, type: fixed, body1: arm, body2: boom@tip}\n") == "");
+  CHECK(with("  - {name: hinge, type: revolute, body1: boom@tip, body2: arm, point: [1.9, 0, 0], axis: [0, 0, 1]}\n")
+            .find("node 10 of modal body 'boom', which is at (2.000000, 0.000000, 0.000000") != std::string::npos);
+  // A driver turns the joint at the node; joint springs, friction and joint
+  // inputs there are not modelled.
+  CHECK(with(hinge, "drivers:\n  - {name: turn, type: joint_angle, joint: hinge, function: {polynomial: [0, 1]}}\n") == "");
+  CHECK(with(hinge, "forces:\n  - {type: joint_spring, joint: hinge, stiffness: 10.0}\n")
+            .find("joint 'hinge' holds a modal body's node: a joint_spring force on it is not modelled (a driver is)") !=
+        std::string::npos);
+  CHECK(with("  - {name: hinge, type: revolute, body1: boom@tip, body2: arm, axis: [0, 0, 1], friction: {torque: 0.1}}\n")
+            .find("joint 'hinge' holds a modal body's node: friction there is not modelled") != std::string::npos);
+  CHECK(with(hinge, "inputs:\n  - {name: motor, type: joint_torque, joint: hinge, min: -1, max: 1, safe: 0}\n")
+            .find("a joint_torque input on it is not modelled") != std::string::npos);
+}
