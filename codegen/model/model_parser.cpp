@@ -32,7 +32,7 @@ const Keys kTopKeys = {"name", "gravity", "bodies", "joints", "forces", "drivers
 const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "position",
                         "orientation", "velocity", "angular_velocity", "flexible"};
 const Keys kFlexibleBodyKeys = {"name", "flexible", "position", "orientation", "velocity", "angular_velocity"};
-const Keys kBeamKeys = {"length", "elements", "EA", "GA", "GJ", "EI", "rho_A", "rho_J", "damping", "modes"};
+const Keys kBeamKeys = {"length", "elements", "EA", "GA", "GJ", "EI", "rho_A", "rho_J", "damping", "modes", "static_loads"};
 // A modal body from a file (docs/flexible.md, "Modal data from a file").
 const Keys kModalFileBodyKeys = {"file", "modes", "damping_ratio"};
 const Keys kModalFileKeys = {"coordinates", "nodes", "clamped", "stiffness", "modes", "geometric_stiffness"};
@@ -508,6 +508,37 @@ Eigen::Vector3d modal_node_place(const Model& model, int body, int k) {
   return b.position + mbrt::rotation_matrix(b.orientation) * from_centre;
 }
 
+// A modal beam's static loads, {NODE: [DIRECTION, ...], ...}: the
+// coordinates (6 a node: x, y, z, rx, ry, rz) whose unit loads' static shapes
+// join the modes kept, at most kMaxModes in all.
+std::vector<int> read_static_loads(const Value& v, const std::string& body, int elements, int modes) {
+  const std::string expected = "a map of nodes to load directions, such as {tip: [y, rz]}";
+  if (!v.node.IsMap() || v.node.size() == 0) fail_expected(v, expected);
+  const Keys directions = {"x", "y", "z", "rx", "ry", "rz"};
+  std::vector<int> coordinates;
+  for (const auto& entry : v.node) {
+    const Value key{entry.first, v.key, location(v.where.file, entry.first.Mark())};
+    const Value list{entry.second, v.key + "." + entry.first.Scalar(), location(v.where.file, entry.second.Mark())};
+    const int node = node_number(key, "modal body", body, read_string(key, "a node (root, tip or K)"), elements);
+    if (node == 0) fail(key, "the root is clamped: a load there does not bend the beam; name another node");
+    if (!list.node.IsSequence() || list.node.size() == 0) fail_expected(list, "a list of directions (x, y, z, ry, rz)");
+    for (std::size_t i = 0; i < list.node.size(); ++i) {
+      const Value item = element(list, i);
+      const std::string d = read_choice(item, directions);
+      if (d == "rx") fail(item, "rx twists the beam, and its modes leave torsion out; load it along x, y, z, ry or rz");
+      const int c = 6 * node + static_cast<int>(std::find(directions.begin(), directions.end(), d) - directions.begin());
+      if (std::find(coordinates.begin(), coordinates.end(), c) != coordinates.end()) fail(item, "'" + d + "' given twice for this node");
+      coordinates.push_back(c);
+    }
+  }
+  if (modes + static_cast<int>(coordinates.size()) > kMaxModes) {
+    fail(v, std::to_string(modes) + " modes and " + std::to_string(coordinates.size()) + " static loads make " +
+                std::to_string(modes + static_cast<int>(coordinates.size())) + " modes; a body keeps at most " +
+                std::to_string(kMaxModes) + ": keep fewer modes or loads");
+  }
+  return coordinates;
+}
+
 // An optional list (joints, forces): an empty value means none.
 bool is_empty_or_list(const Value& v, const std::string& expected) {
   if (v.node.IsNull()) return true;
@@ -764,6 +795,7 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
     beam.length = length, beam.EA = section.EA, beam.GJ = section.GJ, beam.EIy = section.EIy, beam.EIz = section.EIz;
     beam.rho_A = rho_A, beam.rho_J = rho_J, beam.damping = section.damping, beam.elements = f.elements;
     if (beam.modes > kMaxModes) fail_expected(*modes, "at most " + std::to_string(kMaxModes) + " modes");
+    if (auto v = b.find("static_loads")) beam.static_loads = read_static_loads(*v, f.name, f.elements, beam.modes);
     // Six modes converge long before; the modes' eigenproblem grows as the cube.
     if (beam.elements > 60) fail_expected(b.get("elements"), "at most 60 elements for a modal body");
     Body frame;

@@ -116,7 +116,44 @@ Eigen::MatrixXd restrict(const Eigen::MatrixXd& A, const std::vector<int>& rows,
 
 }  // namespace
 
-ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping) {
+// The modes kept and the static shapes of unit loads at `coordinates` (the
+// clamped beam's displacement under each, MacNeal 1971; Rubin 1975),
+// turned into one mass-orthonormal basis with a diagonal stiffness: the
+// eigenvectors of the beam's stiffness and mass on their span, ascending.
+// Each shape then carries its load's static response exactly, which the
+// modes alone, free at the nodes, approach slowly (a moment at the tip).
+static void add_static_shapes(const BeamProperties& beam, const std::vector<int>& coordinates, Eigen::MatrixXd& shapes,
+                       Eigen::VectorXd& omega) {
+  const BeamMatrices m = assemble_beam(beam);
+  const Eigen::Index n = shapes.rows(), kept = shapes.cols(), added = static_cast<Eigen::Index>(coordinates.size());
+  Eigen::MatrixXd basis(n, kept + added);
+  basis.leftCols(kept) = shapes;
+  for (Eigen::Index k = 0; k < added; ++k) {
+    Eigen::VectorXd load = Eigen::VectorXd::Zero(n);
+    load[coordinates[static_cast<size_t>(k)]] = 1.0;
+    Eigen::VectorXd u = clamped_static_displacement(beam, load);
+    // What the modes kept and the shapes before it leave out, in the mass's
+    // norm: a shape they already hold would make the basis singular.
+    const double size = std::sqrt(u.dot(m.M * u));
+    const Eigen::MatrixXd before = basis.leftCols(kept + k);
+    u -= before * (before.transpose() * m.M * before).ldlt().solve(before.transpose() * m.M * u);
+    if (!(std::sqrt(u.dot(m.M * u)) > 1e-6 * size)) {
+      static const char* directions[] = {"x", "y", "z", "rx", "ry", "rz"};
+      const int c = coordinates[static_cast<size_t>(k)], node = c / kNodeCoordinates;
+      throw std::invalid_argument("static_loads: the load at node " + (node == beam.elements ? std::string("tip") : std::to_string(node)) +
+                                  " along " + directions[c % kNodeCoordinates] +
+                                  " moves the beam as the modes kept and the loads before it already do; drop it");
+    }
+    basis.col(kept + k) = u;
+  }
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(basis.transpose() * m.K * basis,
+                                                                      basis.transpose() * m.M * basis);
+  shapes = basis * eig.eigenvectors();
+  omega = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  fix_signs(shapes);
+}
+
+ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping, const std::vector<int>& static_loads) {
   const int available = kNodeCoordinates * beam.elements;
   // Enough candidates that the lowest `modes` bending and axial ones are among
   // them whatever the torsion modes in between.
@@ -147,6 +184,10 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping)
   for (int k = 0; k < modes; ++k) {
     shapes.col(k) = all.shapes.col(chosen[static_cast<size_t>(k)]);
     p.omega[k] = all.omega[chosen[static_cast<size_t>(k)]];
+  }
+  if (!static_loads.empty()) {
+    add_static_shapes(beam, static_loads, shapes, p.omega);
+    p.modes = static_cast<int>(shapes.cols());
   }
   p.damping = damping * p.omega.cwiseAbs2();
   p.shapes = shapes;
@@ -382,7 +423,7 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
 ModalPlan plan_modal(const ModalSource& source) {
   if (source.structure) return plan_modal_structure(*source.structure, source.modes, source.damping_ratio);
   return plan_modal_body({source.length, source.EA, source.GJ, source.EIy, source.EIz, source.rho_A, source.rho_J, source.elements},
-                         source.modes, source.damping);
+                         source.modes, source.damping, source.static_loads);
 }
 
 ModalNode modal_node(const ModalPlan& p, int k) {

@@ -55,9 +55,11 @@ ModalNode modal_node(const ModalPlan& p, int k);
 
 // The frame sits at the beam's centre, axes along it (x) and its bending axes.
 // Torsion modes are skipped (their sections' rotation is not in the
-// invariants); `damping` is stiffness-proportional (s). Throws
-// std::invalid_argument where the elements give fewer bending and axial modes.
-ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping);
+// invariants); `damping` is stiffness-proportional (s). `static_loads`
+// (coordinates, 6 a node) add the static shapes of unit loads there to the
+// `modes` kept, all turned into modes. Throws std::invalid_argument where the
+// elements give fewer bending and axial modes, or a static load adds nothing.
+ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping, const std::vector<int>& static_loads = {});
 
 // A structure's modes: computed from its stiffness (the clamped nodes held;
 // none: the 6 rigid-body modes dropped; coordinates without mass condensed

@@ -254,7 +254,7 @@ StableStep estimate_stable_step(const Model& m, const std::vector<ModalPlan>& mo
     const ModalSource& beam = m.modal[i];
     const ModalPlan p = i < modal_plans.size() ? modal_plans[i] : plan_modal(beam);
     s.lowest_mode.push_back(p.omega[0]);
-    const int n = beam.modes;
+    const int n = p.modes;
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 + n, 6 + n), K = Eigen::MatrixXd::Zero(6 + n, 6 + n);
     M.topLeftCorner<3, 3>() = p.m * Eigen::Matrix3d::Identity();
     M.block<3, 3>(3, 3) = p.J;
