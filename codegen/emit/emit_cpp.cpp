@@ -1238,7 +1238,7 @@ void Emitter::reactions_function(std::ostringstream& o) const {
     }
     o << "  r[constraint::" << b.name << "] = mbrt::joint_reaction(-(" << columns
       << ".transpose() * " << seg("s.lambda", j) << "), " << pose(on) << ",\n      " << point << ", "
-      << (on_body2 ? "1.0" : "-1.0") << ", " << pose(b.body1) << ", " << b.name << "_frame);\n";
+      << (on_body2 ? "1.0" : "-1.0") << ", " << pose(b.body1) << ", " << reaction_frame(j) << ");\n";
   }
   o << "}\n\n";
 }

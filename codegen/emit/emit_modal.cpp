@@ -124,7 +124,7 @@ void Emitter::modal_force_load(std::ostringstream& o, const Force& f, const std:
 // columns between the frame and the modal momenta and adds the node's
 // deformation terms to quad. Point joints (spherical, distance) have no axes
 // to turn.
-static bool turns_axes(const ConstraintBlock& b) {
+bool Emitter::turns_axes(const ConstraintBlock& b) {
   return b.source == ConstraintSource::driver ||
          (b.joint_type != JointType::spherical && b.joint_type != JointType::distance);
 }
@@ -145,7 +145,7 @@ std::string Emitter::modal_node_block(int j) const {
                              modal_coordinates(m, "modal_q") + ", " + modal_coordinates(m, "modal_p");
     out += "    const mbrt::ModalPointMotion " + x + " = mbrt::modal_point_motion<" + N + ">(" + args + ");\n" +
            "    f.s" + std::to_string(e + 1) + " = " + x + ".point;\n";
-    if (turns_axes(b)) out += "    mbrt::turn_joint_axes(" + x + ".turn, " + std::to_string(e + 1) + ", f);\n";
+    if (turns_axes(b)) out += "    f = mbrt::turned_joint_frame(f, " + std::to_string(e + 1) + ", " + x + ".turn);\n";
     motions[e] = "mbrt::BodyMotion{" + pose(i) + ", " + x + ".velocity}";
     columns += "    " + jq(j, i) + " = mbrt::modal_node_rows<" + N + ", " + std::to_string(rows(j)) + ">(" + args + ", " + rows_of(j) +
                "." + (e == 0 ? "J1" : "J2") + ", " + rows_of(j) + ".quad);\n";
@@ -153,6 +153,15 @@ std::string Emitter::modal_node_block(int j) const {
   const std::string target = b.function ? ",\n        " + driver_function_value(b) : "";
   return out + "    " + rows_of(j) + " = mbrt::" + b.kernel + "(f, " + motions[0] + ", " + motions[1] + target + ");\n" + columns +
          "  }\n";
+}
+
+std::string Emitter::reaction_frame(int j) const {
+  const ConstraintBlock& b = block(j);
+  const std::string frame = b.name + "_frame";
+  if (b.node1 < 0 || !turns_axes(b)) return frame;
+  const std::string N = std::to_string(modes_of(b.body1));
+  return "mbrt::turned_joint_frame(" + frame + ", 1, mbrt::modal_section_turn<" + N + ">(" + modal_node_constant(b.body1, b.node1) + ", " +
+         modal_coordinates(plan(b.body1).modal, "modal_q") + "))";
 }
 
 std::string Emitter::modal_node_place(int b, int k) const {

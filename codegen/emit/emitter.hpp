@@ -198,10 +198,14 @@ class Emitter {
   std::vector<int> modal_nodes(int i) const;  // the nodes the outputs, forces and inputs name, ascending
   std::string modal_node_output(const Output& out, const std::string& at) const;
   void modal_force_load(std::ostringstream& o, const Force& f, const std::string& n) const;
-  // constraint_rows' line for block j, a point joint at a modal body's node.
+  // constraint_rows' line for block j, a joint (or its driver) at a modal body's node.
   std::string modal_node_block(int j) const;
   // The node's place (world) for reactions, at the state's deformation.
   std::string modal_node_place(int b, int k) const;
+  // Block j's joint frame for reactions: body 1's axes turned with its node's section.
+  std::string reaction_frame(int j) const;
+  // Whether a joint at a node turns its axes with the section (not a point joint).
+  static bool turns_axes(const ConstraintBlock& b);
   // The torque `t` (world, in scope) on body2, its reaction on body1, either
   // at a modal body's node (k >= 0) or on the body.
   void torque_on_ends(std::ostringstream& o, int body1, int node1, int body2, int node2) const;
@@ -247,7 +251,7 @@ class Emitter {
     for (int b : {block(j).body1, block(j).body2}) if (b != kGround) out.push_back(b);
     return out;
   }
-  // The modal bodies whose node a point joint holds: their momenta's
+  // The modal bodies whose node a joint holds: their momenta's
   // columns jq_BODY (include/mbrt/modal_body.hpp, modal_node_rows), whose
   // M^-1 jq^T is jq^T (unit modal masses); u[kBodies + modal::BODY] in BodyVectors.
   std::vector<int> node_bodies(int j) const {

@@ -77,7 +77,7 @@ struct Joint {
   JointType type = JointType::spherical;
   int body1 = kGround;
   int body2 = kGround;
-  int node1 = -1, node2 = -1;  // spherical, distance: a modal body's node (NAME@K), else -1
+  int node1 = -1, node2 = -1;  // spherical, distance, revolute, universal, fixed: a modal body's node (NAME@K), else -1
   Eigen::Vector3d point = Eigen::Vector3d::Zero();   // world, t = 0 (all but distance)
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // unit, world (revolute, cylindrical, prismatic, screw; planar: normal)
   Eigen::Vector3d axis1 = Eigen::Vector3d::UnitX();  // unit, world (universal, fixed in body 1)
@@ -312,6 +312,8 @@ inline constexpr std::array<const char*, 9> kGeometricStiffnessCases = {
 // its lowest bending and axial modes from `elements` finite elements), or a
 // structure from a file.
 inline constexpr int kMaxModes = 6;  // a modal body's modes kept, at most
+// A node's 6 coordinates: displacements, then small rotations.
+inline constexpr std::array<const char*, 6> kNodeCoordinateNames = {"x", "y", "z", "rx", "ry", "rz"};
 
 struct ModalSource {
   int body = kGround;

@@ -514,7 +514,7 @@ Eigen::Vector3d modal_node_place(const Model& model, int body, int k) {
 std::vector<int> read_static_loads(const Value& v, const std::string& body, int elements, int modes) {
   const std::string expected = "a map of nodes to load directions, such as {tip: [y, rz]}";
   if (!v.node.IsMap() || v.node.size() == 0) fail_expected(v, expected);
-  const Keys directions = {"x", "y", "z", "rx", "ry", "rz"};
+  const Keys directions(kNodeCoordinateNames.begin(), kNodeCoordinateNames.end());
   std::vector<int> coordinates;
   for (const auto& entry : v.node) {
     const Value key{entry.first, v.key, location(v.where.file, entry.first.Mark())};
@@ -808,6 +808,7 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
     model.modal.push_back(beam);
     return;
   }
+  if (auto v = b.find("static_loads")) fail(*v, "static_loads shape a modal body's modes; give modes, or remove it for a nodal beam");
   const double l = length / f.elements;
   f.first_node = static_cast<int>(model.bodies.size());
   for (int k = 0; k <= f.elements; ++k) {

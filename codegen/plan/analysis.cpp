@@ -524,7 +524,7 @@ static void check_absolute_friction(const Model& model) {
 }
 
 // Modal bodies (docs/flexible.md): their modes are clamped at the root, so
-// joints attach there; forces and outputs at the root or a node (NAME@K).
+// joints attach there or at a node (NAME@K), as do forces and outputs.
 // The staggered schemes that step the frame with its reduced mass and the
 // modes' momentum take them.
 // The modal columns of the constraint Jacobian at t = 0 (undeformed): a
@@ -555,7 +555,7 @@ static Eigen::MatrixXd node_columns(const Model& model, const Analysis& a, const
   return (out.array().abs() < 1e-8 * largest).select(0.0, out);
 }
 
-// Redundant rows that hold at second order where point joints hold modal
+// Redundant rows that hold at second order where joints hold modal
 // nodes. A repeat among the rows at t = 0 (B^T n = 0) is harmless where, along
 // every motion the joints allow (B z = 0), the rows' second-order change
 // d2 = z^T Phi'' z is one a first-order correction can cancel (n . d2 = 0):
@@ -593,8 +593,7 @@ static void refuse_inconsistent_node_joints(const Model& model, const Analysis& 
         const ModalNode n = modal_node(p, node);
         const Eigen::VectorXd q = x.segment(first_column[static_cast<size_t>(m)], p.modes);
         (side == 1 ? c.frame.s1 : c.frame.s2) = n.point + n.displacement * q;
-        const Eigen::Vector3d theta = n.rotation * q;
-        mbrt::turn_joint_axes(mbrt::section_turn(theta, Eigen::Vector3d::Zero()).C, side, c.frame);
+        c.frame = mbrt::turned_joint_frame(c.frame, side, mbrt::section_turn(n.rotation * q).C);
       }
     }
     return evaluate_constraints(moved, blocks, 0.0).phi;
@@ -629,12 +628,13 @@ static void refuse_inconsistent_node_joints(const Model& model, const Analysis& 
       }
       if (!worst || weight < 1e-9) continue;  // among rigid joints only: not a modal body's
       const int body = worst->node1 >= 0 ? worst->body1 : worst->body2;
-      throw ModelError(worst->where, "joints." + worst->name,
+      const bool driver = worst->source == ConstraintSource::driver;
+      throw ModelError(worst->where, (driver ? "drivers." : "joints.") + worst->name,
                        "its rows repeat the other joints' at t = 0, and part at second order as the bodies move: it holds "
                        "modal body '" + model.body_name(body) + "' at a node along a direction its modes do not move that "
                        "node in (a beam of bending modes held at two places along its axis, free to turn), so it could "
                        "not bend without breaking the joints; free that direction (a distance joint across it instead of "
-                       "a spherical one) or keep a mode that moves the node along it");
+                       "a spherical one, a revolute instead of a fixed one) or keep a mode that moves the node along it");
     }
   }
 }
@@ -661,7 +661,8 @@ static std::vector<ModalPlan> modal_plans(const Model& model, Analysis& a) {
     try {
       plan = plan_modal(beam);
     } catch (const std::exception& e) {
-      throw ModelError(body.where, key, e.what());
+      const bool loads = std::string(e.what()).starts_with("static_loads:");
+      throw ModelError(body.where, loads ? "bodies." + body.name + ".flexible.static_loads" : key, e.what());
     }
     if (!plan.reduced_inverse.allFinite() || !plan.omega.allFinite() || !plan.St_T.allFinite() || !plan.Sr_T.allFinite()) {
       throw ModelError(body.where, key, "the beam's modes are not finite numbers; check its properties' magnitudes");

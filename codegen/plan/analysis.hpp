@@ -52,7 +52,7 @@ struct ConstraintBlock {
   int driver = -1;                         // drivers only: Model::drivers index
   int holonomic_rows = 0;  // the first rows; the rest act on velocities only (rolling_disk, knife_edge)
   std::vector<int> spatial_rows = {};  // planar blocks: the rows of the spatial block they are, in order
-  int node1 = -1, node2 = -1;  // spherical, distance joints: a modal body's node, else -1
+  int node1 = -1, node2 = -1;  // joints at a modal body's node and their drivers: the node, else -1
 };
 
 struct ForcePlan {

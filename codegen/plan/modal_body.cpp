@@ -138,10 +138,9 @@ static void add_static_shapes(const BeamProperties& beam, const std::vector<int>
     const Eigen::MatrixXd before = basis.leftCols(kept + k);
     u -= before * (before.transpose() * m.M * before).ldlt().solve(before.transpose() * m.M * u);
     if (!(std::sqrt(u.dot(m.M * u)) > 1e-6 * size)) {
-      static const char* directions[] = {"x", "y", "z", "rx", "ry", "rz"};
       const int c = coordinates[static_cast<size_t>(k)], node = c / kNodeCoordinates;
       throw std::invalid_argument("static_loads: the load at node " + (node == beam.elements ? std::string("tip") : std::to_string(node)) +
-                                  " along " + directions[c % kNodeCoordinates] +
+                                  " along " + kNodeCoordinateNames[static_cast<size_t>(c % kNodeCoordinates)] +
                                   " moves the beam as the modes kept and the loads before it already do; drop it");
     }
     basis.col(kept + k) = u;
@@ -208,7 +207,7 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping,
     const BeamMatrices m = assemble_beam(beam, hub_radius);
     return Eigen::MatrixXd(shapes.transpose() * m.KG * shapes);
   };
-  for (auto& k : p.kg) k = Eigen::MatrixXd::Zero(modes, modes);
+  for (auto& k : p.kg) k = Eigen::MatrixXd::Zero(p.modes, p.modes);
   p.kg[kSpinYY] = p.kg[kSpinZZ] = projected(-centre);
   p.kg[kAccelerationX] = projected(0.0) - projected(1.0);
 
@@ -258,8 +257,7 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
   const int c = s.coordinates, nodes = static_cast<int>(s.nodes.size()), n = c * nodes;
   const auto fail = [&](const std::string& what) { throw std::invalid_argument(s.file + ": " + what); };
   const auto coordinate = [&](int i) {
-    static const char* names[] = {"x", "y", "z", "rx", "ry", "rz"};
-    return "node '" + s.nodes[static_cast<size_t>(i / c)].name + "' " + names[i % c];
+    return "node '" + s.nodes[static_cast<size_t>(i / c)].name + "' " + kNodeCoordinateNames[static_cast<size_t>(i % c)];
   };
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
   for (int k = 0; k < nodes; ++k) {

@@ -225,6 +225,37 @@ inline double modal_kinetic_energy(const ModalBody<N>& b, const Mat3& R, const V
          w.dot(modal_detail::vee_of(P)) + 0.5 * qd.squaredNorm();
 }
 
+// A node's section turns by the small rotation theta = Theta q: by C(theta),
+// the rotation of Gibbs vector theta / 2 (Cayley's map; to first order the
+// turn by theta), in the frame's axes, whose angular velocity there
+// (C_dot = [omega]x C) is exactly omega = T(theta) theta_dot with
+// T = lambda (I + [theta]x / 2), lambda = 1 / (1 + |theta|^2 / 4). The
+// node's pose and velocity outputs and the joints there take this turn.
+struct SectionTurn {
+  Mat3 C;         // the section's axes in the frame's
+  Mat3 T;         // omega = T theta_dot
+  Vec3 omega;     // the section's angular velocity relative to the frame, body axes
+  Vec3 bias;      // omega_dot - T theta_ddot = -lambda (theta . theta_dot) omega / 2
+};
+
+inline SectionTurn section_turn(const Vec3& theta, const Vec3& theta_dot = Vec3::Zero()) noexcept {
+  const double lambda = 1.0 / (1.0 + 0.25 * theta.squaredNorm());
+  const Mat3 X = skew(theta);
+  SectionTurn t;
+  t.C = Mat3::Identity() + lambda * (X + 0.5 * X * X);
+  t.T = lambda * (Mat3::Identity() + 0.5 * X);
+  t.omega = t.T * theta_dot;
+  t.bias = (-0.5 * lambda * theta.dot(theta_dot)) * t.omega;
+  return t;
+}
+
+// C(theta) as Euler parameters: (1, theta / 2) normalized.
+inline EulerParameters section_turn_parameters(const Vec3& theta) noexcept {
+  EulerParameters c;
+  c << 1.0, 0.5 * theta;
+  return c / c.norm();
+}
+
 // A node of the beam: undeformed place in body axes, and its displacement
 // and small rotation per modal coordinate.
 template <int N>
@@ -240,10 +271,10 @@ inline void modal_point_pose(const ModalPoint<N>& c, const RigidState& s, const 
   Eigen::Map<Vec3> position(out);
   Eigen::Map<EulerParameters> orientation(out + 3);
   position = s.r + rotation_matrix(s.p) * (c.point + c.displacement * q);
-  orientation = quaternion_product(s.p, cayley_increment(c.rotation * q));
+  orientation = quaternion_product(s.p, section_turn_parameters(c.rotation * q));
 }
 
-// The point's velocity (world) and its section's angular velocity (body axes).
+// The point's velocity (world) and its section's angular velocity (the frame's axes).
 template <int N>
 inline void modal_point_velocity(const ModalBody<N>& b, const ModalPoint<N>& c, const RigidState& s,
                                  const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
@@ -252,7 +283,7 @@ inline void modal_point_velocity(const ModalBody<N>& b, const ModalPoint<N>& c, 
   const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, R, s.v, s.w, q, p);
   Eigen::Map<Vec3> velocity(out), angular_velocity(out + 3);
   velocity = s.v + R * (s.w.cross(c.point + c.displacement * q) + c.displacement * qd);
-  angular_velocity = s.w + c.rotation * qd;
+  angular_velocity = s.w + section_turn(c.rotation * q, c.rotation * qd).omega;
 }
 
 // A force f (world) at node c: the frame's load (force world, torque body
@@ -269,37 +300,15 @@ inline Eigen::Matrix<double, N, 1> modal_point_force(const ModalPoint<N>& c, con
 }
 
 // A torque t (world) on node c: the frame's load takes it, and the modes
-// their share Theta^T R^T t through the node's small rotations, returned for
-// modal_loads' applied.
+// their share Theta^T R^T t through the node's small rotations (the linear
+// theory's; section_turn's T differs from I at second order in the turn),
+// returned for modal_loads' applied.
 template <int N>
 inline Eigen::Matrix<double, N, 1> modal_point_torque(const ModalPoint<N>& c, const Mat3& R, const Vec3& t,
                                                       Wrench& load) noexcept {
   const Vec3 tb = R.transpose() * t;
   load.tau += tb;
   return c.rotation.transpose() * tb;
-}
-
-// A node's section turns by the small rotation theta = Theta q. The joints
-// at it carry their axes through C(theta), the rotation of Gibbs vector
-// theta / 2 (Cayley's map; to first order the turn by theta), whose angular
-// velocity in body axes is exactly omega = T(theta) theta_dot with
-// T = lambda (I + [theta]x / 2), lambda = 1 / (1 + |theta|^2 / 4).
-struct SectionTurn {
-  Mat3 C;         // the section's axes in the frame's
-  Mat3 T;         // omega = T theta_dot
-  Vec3 omega;     // the section's angular velocity relative to the frame, body axes
-  Vec3 bias;      // omega_dot - T theta_ddot = -lambda (theta . theta_dot) omega / 2
-};
-
-inline SectionTurn section_turn(const Vec3& theta, const Vec3& theta_dot) noexcept {
-  const double lambda = 1.0 / (1.0 + 0.25 * theta.squaredNorm());
-  const Mat3 X = skew(theta);
-  SectionTurn t;
-  t.C = Mat3::Identity() + lambda * (X + 0.5 * X * X);
-  t.T = lambda * (Mat3::Identity() + 0.5 * X);
-  t.omega = t.T * theta_dot;
-  t.bias = (-0.5 * lambda * theta.dot(theta_dot)) * t.omega;
-  return t;
 }
 
 // Node c as a force element or a joint sees it: its deformed place and its
@@ -324,11 +333,18 @@ inline ModalPointMotion modal_point_motion(const ModalBody<N>& b, const ModalPoi
   return {point, turn.C, {vel.v + pose.R * (c.displacement * qd - turn.omega.cross(point)), vel.w + turn.omega}};
 }
 
-// The joint frame f with the axes on a node's side (side 1 or 2) carried by
-// its section.
-inline void turn_joint_axes(const Mat3& turn, int side, JointFrame& f) noexcept {
+// Joint frame f with the axes on a node's side (side 1 or 2) carried by its
+// section's turn.
+inline JointFrame turned_joint_frame(JointFrame f, int side, const Mat3& turn) noexcept {
   Vec3* axes[2][3] = {{&f.a1, &f.b1, &f.c1}, {&f.a2, &f.b2, &f.c2}};
   for (Vec3* a : axes[side - 1]) *a = turn * *a;
+  return f;
+}
+
+// Node c's section turn at q, in the frame's axes.
+template <int N>
+inline Mat3 modal_section_turn(const ModalPoint<N>& c, const Eigen::Matrix<double, N, 1>& q) noexcept {
+  return section_turn(c.rotation * q).C;
 }
 
 // Jq S^T: what the momentum column Jq takes from the frame's columns. The
