@@ -102,7 +102,7 @@ void Emitter::modal_force_load(std::ostringstream& o, const Force& f, const std:
     if (k < 0) continue;
     const int m = plan(b).modal;
     const std::string N = "<" + std::to_string(a_.modal[static_cast<size_t>(m)].modes) + ">", x = "node" + std::to_string(e + 1);
-    o << "    const mbrt::ModalPointMotion " << x << " = mbrt::modal_point_motion" << N << "(" << body(b).name << "_modal, "
+    o << "    const mbrt::ModalPointMotion" << N << " " << x << " = mbrt::modal_point_motion" << N << "(" << body(b).name << "_modal, "
       << modal_node_constant(b, k) << ", " << pose(b) << ", k.vel" << at(b) << ", " << modal_coordinates(m, "modal_q") << ", "
       << modal_coordinates(m, "modal_p") << ");\n"
       << "    spring.s" << (e + 1) << " = " << x << ".point;\n";
@@ -142,13 +142,13 @@ std::string Emitter::modal_node_block(int j) const {
     const int m = plan(i).modal;
     const std::string N = std::to_string(modes_of(i)), x = "node" + std::to_string(e + 1);
     const std::string args = body(i).name + "_modal, " + modal_node_constant(i, k) + ", " + pose(i) + ", k.vel" + at(i) + ", " +
-                             modal_coordinates(m, "modal_q") + ", " + modal_coordinates(m, "modal_p");
-    out += "    const mbrt::ModalPointMotion " + x + " = mbrt::modal_point_motion<" + N + ">(" + args + ");\n" +
-           "    f.s" + std::to_string(e + 1) + " = " + x + ".point;\n";
-    if (turns_axes(b)) out += "    f = mbrt::turned_joint_frame(f, " + std::to_string(e + 1) + ", " + x + ".turn);\n";
+                             modal_coordinates(m, "modal_q");
+    out += "    const mbrt::ModalPointMotion<" + N + "> " + x + " = mbrt::modal_point_motion<" + N + ">(" + args + ", " +
+           modal_coordinates(m, "modal_p") + ");\n" + "    f.s" + std::to_string(e + 1) + " = " + x + ".point;\n";
+    if (turns_axes(b)) out += "    f = mbrt::turned_joint_frame(f, " + std::to_string(e + 1) + ", " + x + ".turn.C);\n";
     motions[e] = "mbrt::BodyMotion{" + pose(i) + ", " + x + ".velocity}";
-    columns += "    " + jq(j, i) + " = mbrt::modal_node_rows<" + N + ", " + std::to_string(rows(j)) + ">(" + args + ", " + rows_of(j) +
-               "." + (e == 0 ? "J1" : "J2") + ", " + rows_of(j) + ".quad);\n";
+    columns += "    " + jq(j, i) + " = mbrt::modal_node_rows<" + N + ", " + std::to_string(rows(j)) + ">(" + args + ", " + x + ", " +
+               rows_of(j) + "." + (e == 0 ? "J1" : "J2") + ", " + rows_of(j) + ".quad);\n";
   }
   const std::string target = b.function ? ",\n        " + driver_function_value(b) : "";
   return out + "    " + rows_of(j) + " = mbrt::" + b.kernel + "(f, " + motions[0] + ", " + motions[1] + target + ");\n" + columns +

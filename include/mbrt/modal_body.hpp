@@ -312,25 +312,27 @@ inline Eigen::Matrix<double, N, 1> modal_point_torque(const ModalPoint<N>& c, co
 }
 
 // Node c as a force element or a joint sees it: its deformed place and its
-// section's axes in body axes, and a velocity of a rigid body that carries
-// that place and those axes as the node moves: the section's angular velocity
-// w + omega, and the frame's velocity with the node's deformation rate
-// R (Psi qdot - omega x place), so that the carried place moves at the node's
-// velocity.
+// section's turn in body axes, and a velocity of a rigid body that carries
+// that place and the turned axes as the node moves: the section's angular
+// velocity w + omega, and the frame's velocity with the node's deformation
+// rate R (Psi qdot - omega x place), so that the carried place moves at the
+// node's velocity. The modal rates qdot ride along for modal_node_rows.
+template <int N>
 struct ModalPointMotion {
   Vec3 point;
-  Mat3 turn;
+  SectionTurn turn;
+  Eigen::Matrix<double, N, 1> rates;
   BodyVelocity velocity;
 };
 
 template <int N>
-inline ModalPointMotion modal_point_motion(const ModalBody<N>& b, const ModalPoint<N>& c, const BodyPose& pose,
-                                           const BodyVelocity& vel, const Eigen::Matrix<double, N, 1>& q,
-                                           const Eigen::Matrix<double, N, 1>& p) noexcept {
+inline ModalPointMotion<N> modal_point_motion(const ModalBody<N>& b, const ModalPoint<N>& c, const BodyPose& pose,
+                                              const BodyVelocity& vel, const Eigen::Matrix<double, N, 1>& q,
+                                              const Eigen::Matrix<double, N, 1>& p) noexcept {
   const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, pose.R, vel.v, vel.w, q, p);
   const Vec3 point = c.point + c.displacement * q;
   const SectionTurn turn = section_turn(c.rotation * q, c.rotation * qd);
-  return {point, turn.C, {vel.v + pose.R * (c.displacement * qd - turn.omega.cross(point)), vel.w + turn.omega}};
+  return {point, turn, qd, {vel.v + pose.R * (c.displacement * qd - turn.omega.cross(point)), vel.w + turn.omega}};
 }
 
 // Joint frame f with the axes on a node's side (side 1 or 2) carried by its
@@ -363,7 +365,7 @@ inline Eigen::Matrix<double, K, 6> modal_frame_share(const ModalBody<N>& b, cons
 
 // Rows of a joint at node c of a modal body, from a kernel's rows J (frame's
 // columns: J_v the place's velocity, J_w the section's angular velocity) for
-// the rigid body modal_point_motion describes. With omega = T Theta qdot
+// the rigid body modal_point_motion describes, `node`. With omega = T Theta qdot
 // (section_turn) and s the deformed place, the kernel's velocity columns
 // read J_v (v + R (Psi qdot + s x omega)) + J_w (w + omega), so the rows gain
 // the momentum column Jq = J_v R (Psi + [s]x T Theta) + J_w T Theta
@@ -377,12 +379,12 @@ inline Eigen::Matrix<double, K, 6> modal_frame_share(const ModalBody<N>& b, cons
 template <int N, int K>
 inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const ModalPoint<N>& c, const BodyPose& pose,
                                                    const BodyVelocity& vel, const Eigen::Matrix<double, N, 1>& q,
-                                                   const Eigen::Matrix<double, N, 1>& p, Eigen::Matrix<double, K, 6>& J,
+                                                   const ModalPointMotion<N>& node, Eigen::Matrix<double, K, 6>& J,
                                                    Eigen::Matrix<double, K, 1>& quad) noexcept {
-  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, pose.R, vel.v, vel.w, q, p);
+  const Eigen::Matrix<double, N, 1>& qd = node.rates;
   const Eigen::Matrix<double, K, 3> Jv = J.template leftCols<3>(), Jw = J.template rightCols<3>();
-  const Vec3 s = c.point + c.displacement * q, u_dot = c.displacement * qd, &w = vel.w;
-  const SectionTurn turn = section_turn(c.rotation * q, c.rotation * qd);
+  const Vec3 &s = node.point, u_dot = c.displacement * qd, &w = vel.w;
+  const SectionTurn& turn = node.turn;
   const Eigen::Matrix<double, 3, N> turn_columns = turn.T * c.rotation;
   Eigen::Matrix<double, K, 6> Jq = Eigen::Matrix<double, K, 6>::Zero();
   Jq.template leftCols<N>() = Jv * (pose.R * (c.displacement + skew(s) * turn_columns)) + Jw * turn_columns;
