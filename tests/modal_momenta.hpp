@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -20,28 +21,44 @@
 
 namespace modal_momenta {
 
+// The beam's points move by the modes' field plus the shortening that
+// bending brings: a point x from the root moves back along the beam by
+// (1/2) int_0^x |w'|^2 ds, w the transverse deflection (second order in q).
 class ModalBeamMass {
  public:
   ModalBeamMass(const mbrt::codegen::BeamProperties& beam, int modes)
-      : beam_(beam), plan_(mbrt::codegen::plan_modal_body(beam, modes, 0.0)), field_(mbrt::codegen::beam_field(beam, plan_.shapes)) {}
+      : beam_(beam), plan_(mbrt::codegen::plan_modal_body(beam, modes, 0.0)), field_(mbrt::codegen::beam_field(beam, plan_.shapes)) {
+    for (Eigen::Index k = 0; k < field_.x.size(); ++k) shortening_.push_back(slopes_squared(field_.x[k]));
+  }
 
   // b: the frame's state; q, p: modal coordinates and momenta.
   std::array<mbrt::Vec3, 2> momenta(const mbrt::RigidState& b, const Eigen::VectorXd& q, const Eigen::VectorXd& p) const {
     const mbrt::Mat3 R = Eigen::Quaterniond(b.p[0], b.p[1], b.p[2], b.p[3]).toRotationMatrix();
     const double centre = beam_.length / 2;
-    // p = qdot + St^T R^T v + Sr(q)^T w, Sr(q) = int (rho0 + u) x Psi over the field.
-    Eigen::MatrixXd Sr_T = Eigen::MatrixXd::Zero(plan_.modes, 3);
+    const auto place = [&](Eigen::Index k) -> mbrt::Vec3 {
+      return mbrt::Vec3(field_.x[k] - centre - 0.5 * q.dot(shortening_[static_cast<size_t>(k)] * q), 0, 0) +
+             field_.displacement[static_cast<size_t>(k)] * q;
+    };
+    const auto rate_columns = [&](Eigen::Index k) {  // d place / d q
+      Eigen::Matrix<double, 3, Eigen::Dynamic> D = field_.displacement[static_cast<size_t>(k)];
+      D.row(0) -= (shortening_[static_cast<size_t>(k)] * q).transpose();
+      return D;
+    };
+    // p = qdot + St(q)^T R^T v + Sr(q)^T w: St(q) = int d place / d q, Sr(q) = int place x d place / d q.
+    Eigen::MatrixXd St_T = Eigen::MatrixXd::Zero(plan_.modes, 3), Sr_T = St_T;
     for (Eigen::Index k = 0; k < field_.x.size(); ++k) {
-      const Eigen::Matrix<double, 3, Eigen::Dynamic>& D = field_.displacement[static_cast<size_t>(k)];
-      const mbrt::Vec3 rho = mbrt::Vec3(field_.x[k] - centre, 0, 0) + D * q;
-      for (int j = 0; j < plan_.modes; ++j) Sr_T.row(j) += field_.mass[k] * rho.cross(mbrt::Vec3(D.col(j))).transpose();
+      const Eigen::Matrix<double, 3, Eigen::Dynamic> D = rate_columns(k);
+      const mbrt::Vec3 rho = place(k);
+      for (int j = 0; j < plan_.modes; ++j) {
+        St_T.row(j) += field_.mass[k] * D.col(j).transpose();
+        Sr_T.row(j) += field_.mass[k] * rho.cross(mbrt::Vec3(D.col(j))).transpose();
+      }
     }
-    const Eigen::VectorXd qd = p - plan_.St_T * (R.transpose() * b.v) - Sr_T * b.w;
+    const Eigen::VectorXd qd = p - St_T * (R.transpose() * b.v) - Sr_T * b.w;
     mbrt::Vec3 P = mbrt::Vec3::Zero(), H = R * mbrt::Vec3(beam_.rho_J * beam_.length * b.w.x(), 0, 0);
     for (Eigen::Index k = 0; k < field_.x.size(); ++k) {
-      const Eigen::Matrix<double, 3, Eigen::Dynamic>& D = field_.displacement[static_cast<size_t>(k)];
-      const mbrt::Vec3 rho = mbrt::Vec3(field_.x[k] - centre, 0, 0) + D * q;
-      const mbrt::Vec3 v = b.v + R * (b.w.cross(rho) + D * qd);
+      const mbrt::Vec3 rho = place(k);
+      const mbrt::Vec3 v = b.v + R * (b.w.cross(rho) + rate_columns(k) * qd);
       P += field_.mass[k] * v;
       H += field_.mass[k] * (b.r + R * rho).cross(v);
     }
@@ -49,9 +66,36 @@ class ModalBeamMass {
   }
 
  private:
+  // int_0^x Y'^T Y' ds (modes x modes), Y' the transverse slopes (y, z) per
+  // mode of the shapes' cubic Hermite elements (Przemieniecki 1968, ch. 5):
+  // four-point Gauss over each element or its part below x, exact for the
+  // squared slopes' degree 4.
+  Eigen::MatrixXd slopes_squared(double x) const {
+    static constexpr double points[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
+    static constexpr double weights[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731, 0.1739274225687269};
+    const double l = beam_.length / beam_.elements;
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(plan_.modes, plan_.modes);
+    for (int e = 0; e < beam_.elements && e * l < x; ++e) {
+      const double part = std::min(1.0, (x - e * l) / l);  // of the element below x
+      for (int g = 0; g < 4; ++g) {
+        const double s = part * points[g];
+        const double n[4] = {(6 * s * s - 6 * s) / l, 1 - 4 * s + 3 * s * s, (6 * s - 6 * s * s) / l, 3 * s * s - 2 * s};
+        Eigen::MatrixXd Y(2, plan_.modes);
+        for (int m = 0; m < plan_.modes; ++m) {
+          const auto c = plan_.shapes.col(m).segment(6 * e, 12);  // (x, y, z, rx, ry, rz) at both ends
+          Y(0, m) = n[0] * c[1] + n[1] * c[5] + n[2] * c[7] + n[3] * c[11];
+          Y(1, m) = n[0] * c[2] - n[1] * c[4] + n[2] * c[8] - n[3] * c[10];
+        }
+        A += (weights[g] * part * l) * Y.transpose() * Y;
+      }
+    }
+    return A;
+  }
+
   mbrt::codegen::BeamProperties beam_;
   mbrt::codegen::ModalPlan plan_;
   mbrt::codegen::BeamField field_;
+  std::vector<Eigen::MatrixXd> shortening_;  // per field point: its shortening is q^T A q / 2
 };
 
 // The largest relative change of energy, momentum and angular momentum

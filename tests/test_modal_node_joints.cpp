@@ -60,7 +60,10 @@ struct Trajectory {
   }
   Modes p(double t) const {
     const Modes qd = (q(t + kD) - q(t - kD)) / (2 * kD);
-    return qd + body.St_T * (R(t).transpose() * v(t)) + mbrt::turn_coupling_transpose<N>(body, q(t)) * w(t);
+    // St(q)^T: St^T plus the first moment's Hessians (the acceleration cases) times q.
+    Eigen::Matrix<double, N, 3> St_T = body.St_T;
+    for (int a = 0; a < 3; ++a) St_T.col(a) += body.kg[static_cast<size_t>(6 + a)] * q(t);
+    return qd + St_T * (R(t).transpose() * v(t)) + mbrt::turn_coupling_transpose<N>(body, q(t)) * w(t);
   }
   static constexpr double kD = 1e-5;
 };
@@ -132,6 +135,11 @@ TEST_CASE("a joint's rows at a modal body's node move as finite differences of t
   x.body.St_T.setRandom();
   x.body.Sr_T.setRandom();
   for (auto& e : x.body.E) e.setRandom();
+  for (int a = 6; a < 9; ++a) {  // the shortening's first moment: symmetric Hessians
+    const Eigen::Matrix<double, N, N> h = Eigen::Matrix<double, N, N>::Random();
+    x.body.kg[static_cast<size_t>(a)] = h + h.transpose();
+  }
+  x.body.kg_cases = 0b111000000u;
   mbrt::ModalPoint<N> c;
   c.point = Vec3(0.6, -0.2, 0.1);
   c.displacement.setRandom();

@@ -138,15 +138,11 @@ std::vector<StateField> Emitter::state_fields() const {
   if (modal()) {
     const int nm = static_cast<int>(a_.modal.size());
     f.push_back({"  // Modal bodies by modal:: index (docs/flexible.md), their first N entries:\n"
-                 "  // modal coordinates q, momenta p = qdot + St^T R^T v + Sr(q)^T w, and dp/dt at t.\n"
-                 "  std::array<mbrt::Vec6, kModalBodies> modal_q, modal_p, modal_rate;\n"
-                 "  // The frame's acceleration at t in its own axes, for the geometric\n"
-                 "  // stiffness (in body axes it does not turn with a spinning frame).\n"
-                 "  std::array<mbrt::Vec3, kModalBodies> modal_frame_acceleration;\n",
+                 "  // modal coordinates q, momenta p = qdot + St(q)^T R^T v + Sr(q)^T w, and dp/dt at t.\n"
+                 "  std::array<mbrt::Vec6, kModalBodies> modal_q, modal_p, modal_rate;\n",
                  "modal_q", "double", "MODAL_BODIES", "[6]", nm});
     f.push_back({"", "modal_p", "double", "MODAL_BODIES", "[6]", nm});
     f.push_back({"", "modal_rate", "double", "MODAL_BODIES", "[6]", nm});
-    f.push_back({"", "modal_frame_acceleration", "double", "MODAL_BODIES", "[3]", nm});
   }
   f.push_back({std::string(tree_scheme() ? "" : "  // Constraint multipliers of the last step, rows as in kConstraintInfo.\n") +
                    "  Eigen::Matrix<double, kConstraintRows, 1> lambda;\n",
@@ -504,7 +500,6 @@ void Emitter::velocity_helpers(std::ostringstream& o) const {
     }
   }
   if (modal()) o << "  for (int b = 0; b < kModalBodies; ++b) s.modal_rate[b] = a[kBodies + b];\n";
-  modal_frame_accelerations(o);
   o << "}\n\n"
     << "static BodyVectors accelerations_of(const State& s) noexcept {\n  BodyVectors a;\n";
   for (int i = 0; i < static_cast<int>(m_.bodies.size()); ++i) {

@@ -175,22 +175,11 @@ void Emitter::modal_loads(std::ostringstream& o) const {
     const int i = a_.modal[k].body, n = static_cast<int>(k);
     o << "  {  // modal body " << body(i).name << ": inertia terms of the deformed body, elastic and damping loads\n"
       << "    const auto e = mbrt::modal_loads<" << a_.modal[k].modes << ">(" << body(i).name << "_modal, " << pose(i) << ".R, k.vel" << at(i) << ".v, k.vel"
-      << at(i) << ".w,\n        s.modal_frame_acceleration" << modal_slot(n) << ", " << (a_.gravity ? gravity() : "mbrt::Vec3::Zero()") << ", "
+      << at(i) << ".w,\n        " << (a_.gravity ? gravity() : "mbrt::Vec3::Zero()") << ", "
       << modal_coordinates(n, "modal_q") << ", " << modal_coordinates(n, "modal_p") << ", l.modal" << modal_slot(n) << ".head<"
       << a_.modal[k].modes << ">(), l.w" << at(i) << ");\n"
       << "    l.modal" << modal_slot(n) << ".head<" << a_.modal[k].modes << ">() = e.momentum_rate;\n"
       << "    l.elastic_energy += e.potential;\n  }\n";
-  }
-}
-
-// The frame's acceleration turned into its axes at the configuration it was
-// solved at: turned with the next step's rotation instead, a frame spinning
-// at w would see its centripetal acceleration turned by w h.
-void Emitter::modal_frame_accelerations(std::ostringstream& o) const {
-  for (size_t k = 0; k < a_.modal.size(); ++k) {
-    const int i = a_.modal[k].body;
-    o << "  s.modal_frame_acceleration" << modal_slot(static_cast<int>(k)) << " = mbrt::rotation_matrix(" << state_of(i)
-      << ".p).transpose() * a" << at(i) << ".head<3>();\n";
   }
 }
 
@@ -214,7 +203,7 @@ void Emitter::modal_drift(std::ostringstream& o) const {
 void Emitter::modal_initial_momenta(std::ostringstream& o) const {
   if (!modal()) return;
   o << "  s.modal_q.fill(mbrt::Vec6::Zero());  // undeformed, at rest in the frame\n  s.modal_p.fill(mbrt::Vec6::Zero());\n"
-    << "  s.modal_rate.fill(mbrt::Vec6::Zero());\n  s.modal_frame_acceleration.fill(mbrt::Vec3::Zero());\n";
+    << "  s.modal_rate.fill(mbrt::Vec6::Zero());\n";
   for (size_t k = 0; k < a_.modal.size(); ++k) {
     const int i = a_.modal[k].body, n = static_cast<int>(k);
     const std::string st = state_of(i), b = body(i).name + "_modal";

@@ -135,9 +135,9 @@ static void correct_positions(const ConstraintSystem& c, State& s) noexcept {
     const int i = a_.modal[k].body, n = static_cast<int>(k);
     if (!held[static_cast<size_t>(i)]) continue;
     const std::string b = body(i).name + "_modal", q = modal_coordinates(n, "modal_q"), N = std::to_string(a_.modal[k].modes);
-    o << "  " << q << " += dq" << momenta_at(i) << ".head<" << N << ">() - " << b << ".St_T * (mbrt::rotation_matrix(" << state_of(i)
-      << ".p).transpose() * dq" << at(i) << ".head<3>()) -\n      mbrt::turn_coupling_transpose<" << N << ">(" << b << ", " << q
-      << ") * dq" << at(i) << ".tail<3>();\n";
+    o << "  " << q << " += dq" << momenta_at(i) << ".head<" << N << ">() - mbrt::translation_coupling_transpose<" << N << ">(" << b
+      << ", " << q << ") *\n      (mbrt::rotation_matrix(" << state_of(i) << ".p).transpose() * dq" << at(i)
+      << ".head<3>()) - mbrt::turn_coupling_transpose<" << N << ">(" << b << ", " << q << ") * dq" << at(i) << ".tail<3>();\n";
   }
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const std::string st = state_of(static_cast<int>(i));

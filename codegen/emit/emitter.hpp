@@ -188,7 +188,6 @@ class Emitter {
   void modal_constants(std::ostringstream& o) const;
   void modal_loads(std::ostringstream& o) const;
   void modal_kick(std::ostringstream& o) const;
-  void modal_frame_accelerations(std::ostringstream& o) const;
   void modal_drift(std::ostringstream& o) const;
   void modal_initial_momenta(std::ostringstream& o) const;
   void modal_energy(std::ostringstream& o) const;

@@ -6,22 +6,28 @@
 //
 // The frame is the undeformed beam's centre of mass and axes (x along the
 // beam). A material point at rho0 moves to rho0 + Psi(rho0) q. The mass
-// matrix in (v body, w body, qdot) is that of the deformed body, exact to
-// second order in q,
-//   M(q) = [m I, -[c]x, St; [c]x, J(q), Sr(q); St^T, Sr(q)^T, I],
-//   c = St q,  St = int Psi,  Sr(q) = int (rho0 + u) x Psi,
+// matrix in (v body, w body, qdot) is that of the deformed body to second
+// order in q, the bending's shortening taken in its first moment only,
+//   M(q) = [m I, -[c]x, St(q); [c]x, J(q), Sr(q); St(q)^T, Sr(q)^T, I],
+//   c(q) = St q + shortening,  St(q) = dc/dq,  St = int Psi,
+//   Sr(q) = int (rho0 + u) x Psi,
 // J(q) the deformed body's inertia about the frame's origin, and the
 // centrifugal, Coriolis and gyroscopic terms are loads. Nothing in it lags:
 // a light frame (a tool's root section) would otherwise feed its own last
 // accelerations back through q. The step keeps the frame's generalized
-// velocities and the modal momentum p = qdot + St^T R^T v + Sr(q)^T w, which
+// velocities and the modal momentum p = qdot + St(q)^T R^T v + Sr(q)^T w, which
 // constraint forces on the frame leave alone; the frame then moves with the
-// reduced mass Mf(q) - S S^T (Mf the frame's 6x6 block, S = [St; Sr(q)])
+// reduced mass Mf(q) - S S^T (Mf the frame's 6x6 block, S = [St(q); Sr(q)])
 // and the load F - S f_q, where f_q is the modes' generalized force.
 //
 // Geometric stiffness (Kane, Ryan & Banerjee 1987): the stresses of the
 // frame's rigid motion, from its spin and its acceleration less gravity,
-// with precomputed matrices per load case.
+// with precomputed matrices per load case. Those of the acceleration are the
+// Hessians of the body's first moment: bending shortens the body and shifts
+// its mass back, c(q) = St q + (q^T D_a q / 2)_a. So they enter the mass
+// matrix through c(q) and St(q) = dc/dq, and the frame's acceleration is the
+// step's own, not the last step's (which a welded loop's undamped modes fed
+// on). Those of the spin are loads at the spin of the moment.
 #pragma once
 
 #include <array>
@@ -42,9 +48,11 @@ struct ModalBody {
   Modes damping;                                // 1/s: modal damping
   // Geometric stiffness per load case: per w_a w_b (xx, yy, zz, xy, xz, yz),
   // then per m/s^2 of the frame's acceleration less gravity along x, y, z
-  // (body axes); bit k of kg_cases set where case k is not zero.
+  // (body axes); bit k of kg_cases set where case k is not zero. The
+  // acceleration cases are the Hessians D_a of the first moment
+  // c(q) = St^T q + (q^T D_a q / 2)_a.
   std::array<ModeMatrix, 9> kg;
-  unsigned kg_cases;
+  unsigned kg_cases = 0;
   std::array<ModeMatrix, 9> E;                  // int Psi_a^T Psi_b dm, index 3 a + b
   std::array<Eigen::Matrix<double, 1, N>, 9> G; // int rho0_a Psi_b dm, index 3 a + b
   Mat3 J;                                       // the undeformed body's inertia about its centre, body axes
@@ -73,7 +81,36 @@ inline Mat3 field_product(const std::array<Eigen::Matrix<double, N, N>, 9>& E, c
 
 inline Vec3 vee_of(const Mat3& P) noexcept { return {P(1, 2) - P(2, 1), P(2, 0) - P(0, 2), P(0, 1) - P(1, 0)}; }
 
+inline constexpr unsigned kAccelerationCase = 6;  // kg[6 + a]: per unit acceleration along a
+
+template <int N>
+inline bool has_case(const ModalBody<N>& b, unsigned k) noexcept {
+  return (b.kg_cases & (1u << k)) != 0;
+}
+
 }  // namespace modal_detail
+
+// The deformed body's first moment about the frame's origin (body axes),
+// c(q) = St^T q + (q^T D_a q / 2)_a: the shortening shifts the mass back.
+template <int N>
+inline Vec3 modal_first_moment(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
+  Vec3 c = b.St_T.transpose() * q;
+  for (unsigned a = 0; a < 3; ++a) {
+    if (modal_detail::has_case(b, modal_detail::kAccelerationCase + a)) c[a] += 0.5 * q.dot(b.kg[modal_detail::kAccelerationCase + a] * q);
+  }
+  return c;
+}
+
+// St(q)^T = (dc/dq)^T: column a is St^T's plus D_a q.
+template <int N>
+inline Eigen::Matrix<double, N, 3> translation_coupling_transpose(const ModalBody<N>& b,
+                                                                  const Eigen::Matrix<double, N, 1>& q) noexcept {
+  Eigen::Matrix<double, N, 3> T = b.St_T;
+  for (unsigned a = 0; a < 3; ++a) {
+    if (modal_detail::has_case(b, modal_detail::kAccelerationCase + a)) T.col(a) += b.kg[modal_detail::kAccelerationCase + a] * q;
+  }
+  return T;
+}
 
 // Sr(q)^T = (int (rho0 + u) x Psi)^T: row j is int (rho0 + u) x Psi_j, whose
 // component i is e_iab int u_a Psi_bj = e_iab (q^T E_ab)_j.
@@ -93,7 +130,7 @@ template <int N>
 inline Eigen::Matrix<double, N, 1> modal_rates(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
                                                const Eigen::Matrix<double, N, 1>& q,
                                                const Eigen::Matrix<double, N, 1>& p) noexcept {
-  return p - b.St_T * (R.transpose() * v) - turn_coupling_transpose<N>(b, q) * w;
+  return p - translation_coupling_transpose<N>(b, q) * (R.transpose() * v) - turn_coupling_transpose<N>(b, q) * w;
 }
 
 // The deformed body's inertia about the frame's origin, body axes.
@@ -126,8 +163,8 @@ template <int N>
 inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerParameters& p,
                                            const Eigen::Matrix<double, N, 1>& q) noexcept {
   Eigen::Matrix<double, N, 6> S_T;
-  S_T << b.St_T, turn_coupling_transpose<N>(b, q);
-  const Mat3 c = skew(b.St_T.transpose() * q);
+  S_T << translation_coupling_transpose<N>(b, q), turn_coupling_transpose<N>(b, q);
+  const Mat3 c = skew(modal_first_moment<N>(b, q));
   Eigen::Matrix<double, 6, 6> reduced = -S_T.transpose() * S_T;
   reduced.topLeftCorner<3, 3>().diagonal().array() += b.m;
   reduced.topRightCorner<3, 3>() -= c;
@@ -159,38 +196,35 @@ inline Eigen::Matrix<double, 6, K> inverse_mass_times_transpose(const ModalInver
 template <int N>
 struct ModalLoad {
   Eigen::Matrix<double, N, 1> momentum_rate;  // dp/dt
-  double potential;                           // elastic and geometric strain energy, gravity of the deformation
+  double potential;                           // strain energy, gravity of the deformation
 };
 
 // Adds the body's centrifugal, Coriolis, gyroscopic, elastic and damping
 // terms to its frame load (force world, torque body), reduced by the modes'
-// generalized force, and returns the modal momentum's rate. ab is the
-// frame's last acceleration (body axes), for the geometric stiffness;
-// g is gravity; applied is the modes' generalized force of the loads at its
-// nodes (modal_point_force), whose frame parts load already holds.
+// generalized force, and returns the modal momentum's rate. g is gravity;
+// applied is the modes' generalized force of the loads at its nodes
+// (modal_point_force), whose frame parts load already holds.
 template <int N>
-inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w, const Vec3& ab,
-                                const Vec3& g, const Eigen::Matrix<double, N, 1>& q,
-                                const Eigen::Matrix<double, N, 1>& p, const Eigen::Matrix<double, N, 1>& applied,
-                                Wrench& load) noexcept {
+inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w, const Vec3& g,
+                                const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
+                                const Eigen::Matrix<double, N, 1>& applied, Wrench& load) noexcept {
   using Modes = Eigen::Matrix<double, N, 1>;
   const Vec3 vb = R.transpose() * v, gb = R.transpose() * g;
-  const Eigen::Matrix<double, N, 3> Sr_T = turn_coupling_transpose<N>(b, q);
-  const Modes qd = p - b.St_T * vb - Sr_T * w;
-  const Vec3 c = b.St_T.transpose() * q, cd = b.St_T.transpose() * qd;  // int u, int udot
+  const Eigen::Matrix<double, N, 3> St_T = translation_coupling_transpose<N>(b, q), Sr_T = turn_coupling_transpose<N>(b, q);
+  const Modes qd = p - St_T * vb - Sr_T * w;
+  const Vec3 c = modal_first_moment<N>(b, q), cd = St_T.transpose() * qd;  // int u, int udot
+  // c's second derivative less St(q) qddot: the shortening's (qdot^T D_a qdot)_a.
+  const Vec3 cdd_bias = 2.0 * (modal_first_moment<N>(b, qd) - b.St_T.transpose() * qd);
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);  // int rho udot^T
   // Rigid: the frame's centrifugal, Coriolis and gyroscopic terms, gravity on the deformation.
-  const Vec3 f = -(w.cross(w.cross(c)) + 2.0 * w.cross(cd));
+  const Vec3 f = -(w.cross(w.cross(c)) + 2.0 * w.cross(cd) + cdd_bias);
   const Vec3 tau = -(w.cross(modal_inertia<N>(b, q) * w) + 2.0 * (P.trace() * w - P.transpose() * w)) + c.cross(gb);
-  // Modal: centrifugal, elastic, damping, geometric stiffness, gravity.
-  const Vec3 a = ab - gb;
-  const std::array<double, 9> cases = {w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.x() * w.z(),
-                                       w.y() * w.z(), a.x(),         a.y(),         a.z()};
-  Modes kg_q = Modes::Zero();  // the geometric stiffness times q, over the cases the body has
-  for (size_t k = 0; k < cases.size(); ++k) {
-    if (b.kg_cases & (1u << k)) kg_q += cases[k] * (b.kg[k] * q);
+  // Modal: centrifugal, the spin's geometric stiffness, elastic, damping, gravity.
+  const std::array<double, 6> spin = {w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.x() * w.z(), w.y() * w.z()};
+  Modes fq = applied + St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd);
+  for (unsigned k = 0; k < spin.size(); ++k) {
+    if (modal_detail::has_case(b, k)) fq -= spin[k] * (b.kg[k] * q);
   }
-  Modes fq = applied + b.St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd) - kg_q;
   const double w2 = w.squaredNorm();
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
@@ -208,9 +242,11 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
     coriolis += (w[j] * b.E[static_cast<size_t>(3 * i + k)] - w[k] * b.E[static_cast<size_t>(3 * i + j)]) * qd;
   }
   fq -= 2.0 * coriolis;
-  load.f += R * (f - b.St_T.transpose() * fq);
+  load.f += R * (f - St_T.transpose() * fq);
   load.tau += tau - Sr_T.transpose() * fq;
-  return {fq - b.St_T * w.cross(vb) + coriolis, 0.5 * q.dot(b.stiffness.cwiseProduct(q) + kg_q) - gb.dot(c)};
+  // dp/dt also takes the change of St(q)^T vb with q, (D_a qdot) vb_a.
+  const Modes shortening_rate = (translation_coupling_transpose<N>(b, qd) - b.St_T) * vb;
+  return {fq - St_T * w.cross(vb) + coriolis + shortening_rate, 0.5 * q.dot(b.stiffness.cwiseProduct(q)) - gb.dot(c)};
 }
 
 // The body's kinetic energy, with the deformed body's inertia terms.
@@ -219,7 +255,7 @@ inline double modal_kinetic_energy(const ModalBody<N>& b, const Mat3& R, const V
                                    const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p) noexcept {
   const Vec3 vb = R.transpose() * v;
   const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, R, v, w, q, p);
-  const Vec3 c = b.St_T.transpose() * q, cd = b.St_T.transpose() * qd;
+  const Vec3 c = modal_first_moment<N>(b, q), cd = translation_coupling_transpose<N>(b, q).transpose() * qd;
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);
   return 0.5 * b.m * vb.squaredNorm() + vb.dot(w.cross(c) + cd) + 0.5 * w.dot(modal_inertia<N>(b, q) * w) +
          w.dot(modal_detail::vee_of(P)) + 0.5 * qd.squaredNorm();
@@ -351,13 +387,13 @@ inline Mat3 modal_section_turn(const ModalPoint<N>& c, const Eigen::Matrix<doubl
 
 // Jq S^T: what the momentum column Jq takes from the frame's columns. The
 // step's velocities are the frame's (v world, w body) and the modal momenta
-// p = qdot + S^T (v, w), S^T = [St^T R^T, Sr(q)^T], so a row J_v x_node_dot
+// p = qdot + S^T (v, w), S^T = [St(q)^T R^T, Sr(q)^T], so a row J_v x_node_dot
 // reads (J - Jq S^T) (v, w) + Jq p.
 template <int N, int K>
 inline Eigen::Matrix<double, K, 6> modal_frame_share(const ModalBody<N>& b, const Mat3& R, const Eigen::Matrix<double, N, 1>& q,
                                                      const Eigen::Matrix<double, K, 6>& Jq) noexcept {
   Eigen::Matrix<double, N, 6> S_T;
-  S_T << b.St_T * R.transpose(), turn_coupling_transpose<N>(b, q);
+  S_T << translation_coupling_transpose<N>(b, q) * R.transpose(), turn_coupling_transpose<N>(b, q);
   Eigen::Matrix<double, K, 6> share;
   share = Jq.template leftCols<N>() * S_T;
   return share;
@@ -373,9 +409,9 @@ inline Eigen::Matrix<double, K, 6> modal_frame_share(const ModalBody<N>& b, cons
 // Jq S^T (modal_frame_share). The place accelerates at
 //   v_dot + R (w_dot x s + Psi q_ddot + w x (w x s) + 2 w x Psi q_dot),
 // the axes turn at w_dot + T Theta q_ddot + bias + w x omega; with
-// q_ddot = p_dot - S^T (v_dot, w_dot) + St^T (w x R^T v) - dSr^T(q_dot) w
-// (dSr^T the part of Sr(q)^T linear in q) quad gains what the kernel, which
-// turns both at w + omega, leaves out.
+// q_ddot = p_dot - S^T (v_dot, w_dot) + St(q)^T (w x R^T v) - dSt^T(q_dot) R^T v
+// - dSr^T(q_dot) w (dSt^T, dSr^T the parts of St(q)^T, Sr(q)^T linear in q)
+// quad gains what the kernel, which turns both at w + omega, leaves out.
 template <int N, int K>
 inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const ModalPoint<N>& c, const BodyPose& pose,
                                                    const BodyVelocity& vel, const Eigen::Matrix<double, N, 1>& q,
@@ -389,8 +425,10 @@ inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const 
   Eigen::Matrix<double, K, 6> Jq = Eigen::Matrix<double, K, 6>::Zero();
   Jq.template leftCols<N>() = Jv * (pose.R * (c.displacement + skew(s) * turn_columns)) + Jw * turn_columns;
   J -= modal_frame_share<N, K>(b, pose.R, q, Jq);
-  const Eigen::Matrix<double, N, 1> q_ddot_bias =
-      b.St_T * w.cross(pose.R.transpose() * vel.v) - (turn_coupling_transpose<N>(b, qd) - b.Sr_T) * w;
+  const Vec3 vb = pose.R.transpose() * vel.v;
+  const Eigen::Matrix<double, N, 1> q_ddot_bias = translation_coupling_transpose<N>(b, q) * w.cross(vb) -
+                                                  (translation_coupling_transpose<N>(b, qd) - b.St_T) * vb -
+                                                  (turn_coupling_transpose<N>(b, qd) - b.Sr_T) * w;
   const Vec3& omega = turn.omega;
   const Vec3 place = 2.0 * w.cross(u_dot - omega.cross(s)) - omega.cross(omega.cross(s)) - turn.bias.cross(s);
   quad += Jw * (w.cross(omega) + turn.bias) + Jv * (pose.R * place) + Jq.template leftCols<N>() * q_ddot_bias;
