@@ -7,7 +7,9 @@
 // carrying a tool's mass and rotary inertia against its characteristic
 // equation; equilibrium of the joints' reactions. A free beam carrying a
 // tool and a flap by such joints keeps the bodies' energy, momentum and
-// angular momentum, at second order in the step, allocating nothing.
+// angular momentum, at second order in the step, allocating nothing. A
+// four-bar welded to a modal coupler's node keeps its energy less the
+// crank torque's work.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -27,6 +29,8 @@
 #include "modal_node_turns_blajer.hpp"
 #include "modal_static_loads.hpp"
 #include "modal_static_loads_blajer.hpp"
+#include "modal_weld_loop.hpp"
+#include "modal_weld_loop_blajer.hpp"
 #include "step_allocations.hpp"
 
 namespace {
@@ -320,6 +324,49 @@ TEST_CASE("a free modal body carrying bodies by fixed and revolute joints at its
   const Conservation blajer = JOINT_TURNS_ERRORS(modal_joint_turns_blajer);
   const Conservation fine = JOINT_TURNS_ERRORS(modal_joint_turns_fine);
   modal_momenta::check_second_order(pcst, blajer, fine);
+}
+
+// The welded four-bar (tests/models/modal_weld_loop.yaml) for 20 s: the
+// largest drift of its energy from the start plus the crank torque's work,
+// and of its joints' velocity rows.
+struct WeldLoopRun {
+  double energy_drift, velocity_rows, start_energy;
+};
+
+template <class State, class Step, class Energy, class CrankAngle, class Violation>
+WeldLoopRun weld_loop_run(State s, double h, Step step, Energy energy, CrankAngle crank_angle, Violation violation) {
+  const double torque = 5.0, e0 = energy(s), angle0 = crank_angle(s);
+  WeldLoopRun r{0, 0, e0};
+  const int steps = static_cast<int>(std::lround(20.0 / h));
+  for (int i = 0; i < steps; ++i) {
+    REQUIRE(step(s) == mbrt::StepStatus::ok);
+    r.energy_drift = std::max(r.energy_drift, std::abs(energy(s) - e0 - torque * (crank_angle(s) - angle0)));
+    r.velocity_rows = std::max(r.velocity_rows, violation(s).velocity);
+  }
+  return r;
+}
+
+#define WELD_LOOP_RUN(NS)                                                                                              \
+  weld_loop_run(                                                                                                       \
+      mbrt::models::NS::initial_state(), mbrt::models::NS::kStep, [](auto& s) { return mbrt::models::NS::step(s); },   \
+      [](const auto& s) { return mbrt::models::NS::energy(s).total(); },                                               \
+      [](const auto& s) {                                                                                              \
+        mbrt::models::NS::Outputs y{};                                                                                 \
+        mbrt::models::NS::outputs(s, y);                                                                               \
+        return y[mbrt::models::NS::output::crank_angle];                                                               \
+      },                                                                                                               \
+      [](const auto& s) { return mbrt::models::NS::constraint_violation(s); })
+
+TEST_CASE("a four-bar welded to an undamped modal coupler's node keeps its energy less the torque's work at 0.25 ms") {
+  const WeldLoopRun baumgarte = WELD_LOOP_RUN(modal_weld_loop);
+  const WeldLoopRun blajer = WELD_LOOP_RUN(modal_weld_loop_blajer);
+  for (const WeldLoopRun& r : {baumgarte, blajer}) {
+    MESSAGE("20 s: energy less work drifts by " << r.energy_drift << " J of " << r.start_energy << ", velocity rows "
+                                                << r.velocity_rows);
+    CHECK(r.energy_drift < 1e-3 * r.start_energy);
+  }
+  CHECK(baumgarte.velocity_rows < 1e-4);
+  CHECK(blajer.velocity_rows < 1e-6);
 }
 
 TEST_CASE("the step holding modal nodes by joints that turn allocates nothing") {
