@@ -298,7 +298,15 @@ struct ModalStructure {
     }
     return false;
   }
+  // Node k's undeformed place from the frame's origin, the file's axes.
+  Eigen::Vector3d node_place(int k) const { return nodes[static_cast<size_t>(k)].position - centre; }
 };
+
+// Node k of a beam of `elements` elements and `length` m, from its centre (the
+// frame's origin) along its x axis: the root at -length / 2.
+inline Eigen::Vector3d beam_node_place(double length, int elements, int k) {
+  return {length * (static_cast<double>(k) / elements - 0.5), 0, 0};
+}
 
 // A structure's geometric stiffness load cases (docs/flexible.md): per
 // w_a w_b of a spin about the file's origin, then per m/s^2 of its
@@ -325,6 +333,7 @@ struct ModalSource {
   std::optional<ModalStructure> structure;  // instead of the beam
   double damping_ratio = 0.0;               // structure: of critical, every mode
   int nodes() const { return structure ? static_cast<int>(structure->nodes.size()) : elements + 1; }
+  Eigen::Vector3d node_place(int k) const { return structure ? structure->node_place(k) : beam_node_place(length, elements, k); }
 };
 
 struct Model {

@@ -500,12 +500,8 @@ int read_body_ref(const Value& v, const Model& model, int* node = nullptr) {
 
 // Where node K of a modal body is at t = 0, world.
 Eigen::Vector3d modal_node_place(const Model& model, int body, int k) {
-  const ModalSource& source = *modal_source(model, body);
   const Body& b = model.bodies[static_cast<size_t>(body)];
-  const Eigen::Vector3d from_centre =
-      source.structure ? Eigen::Vector3d(source.structure->nodes[static_cast<size_t>(k)].position - source.structure->centre)
-                       : Eigen::Vector3d(source.length * (static_cast<double>(k) / source.elements - 0.5), 0, 0);
-  return b.position + mbrt::rotation_matrix(b.orientation) * from_centre;
+  return b.position + mbrt::rotation_matrix(b.orientation) * modal_source(model, body)->node_place(k);
 }
 
 // A modal beam's static loads, {NODE: [DIRECTION, ...], ...}: the

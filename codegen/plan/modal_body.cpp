@@ -195,7 +195,7 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping,
   p.J = Eigen::Vector3d(beam.rho_J * L, p.m * L * L / 12, p.m * L * L / 12).asDiagonal();
   for (int k = 0; k <= beam.elements; ++k) {
     p.node_names.push_back(k == 0 ? "root" : k == beam.elements ? "tip" : std::to_string(k));
-    p.node_points.emplace_back(L * (static_cast<double>(k) / beam.elements - 0.5), 0, 0);
+    p.node_points.push_back(beam_node_place(L, beam.elements, k));
   }
   p.clamped = {0};
 
@@ -385,7 +385,7 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
   std::vector<MassPoint> points;
   for (int k = 0; k < nodes; ++k) {
     const ModalNodeData& d = s.nodes[static_cast<size_t>(k)];
-    const Eigen::Vector3d x = d.position - s.centre;
+    const Eigen::Vector3d x = s.node_place(k);
     p.node_names.push_back(d.name);
     p.node_points.push_back(x);
     p.m += d.mass;
