@@ -122,9 +122,9 @@ TEST_CASE("a modal cantilever at 1 kHz sags by q L^4 / (8 EI) in both planes and
                                        << sag_z << "), period " << period << " s (closed form " << 2 * M_PI / first
                                        << "), energy error " << worst_energy << " J");
   // Two modes a plane hold all but 0.5 % of the static deflection.
-  CHECK(sum_y / steps == doctest::Approx(sag_y).epsilon(0.01));
-  CHECK(sum_z / steps == doctest::Approx(sag_z).epsilon(0.01));
-  CHECK(period == doctest::Approx(2 * M_PI / first).epsilon(1e-3));
+  CHECK(sum_y / steps == doctest::Approx(sag_y).epsilon(0.01).scale(0));
+  CHECK(sum_z / steps == doctest::Approx(sag_z).epsilon(0.01).scale(0));
+  CHECK(period == doctest::Approx(2 * M_PI / first).epsilon(1e-3).scale(0));
   CHECK(worst_energy < 1e-4 * 6.0 * 5.0 * std::abs(sag_z));
   // The tip's velocity output is the rate of its position output.
   m::State a = s;
