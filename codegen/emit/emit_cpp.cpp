@@ -593,12 +593,18 @@ void Emitter::loads_stage(std::ostringstream& o, bool tree) const {
 void Emitter::joint_spring_load(std::ostringstream& o, const Force& f, const std::string& n) const {
   const Joint& j = m_.joints[static_cast<size_t>(f.joint)];
   const bool prismatic = j.type == JointType::prismatic;
-  const std::string frame = jname(f.joint) + "_frame";
-  o << "  {  // joint_spring " << j.name << " on " << m_.body_name(f.body2) << ", reaction on " << m_.body_name(f.body1)
-    << "\n    const mbrt::JointSpringLoad e = mbrt::joint_spring(" << n << ", mbrt::" << (planar_ ? "planar_" : "")
-    << (prismatic ? "prismatic" : "revolute") << "_coordinate(" << frame << ", " << motion(f.body1) << ", "
-    << motion(f.body2) << "));\n";
-  joint_axis_load(o, prismatic, f.body1, f.body2, "e.value", frame + ".a1", frame + ".s1", frame + ".s2");
+  std::string frame = jname(f.joint) + "_frame";
+  std::array<std::string, 2> motions = {motion(f.body1), motion(f.body2)};
+  const auto end = [&](int b, int k) { return k >= 0 ? modal_node_label(b, k) : m_.body_name(b); };
+  o << "  {  // joint_spring " << j.name << " on " << end(f.body2, j.node2) << ", reaction on " << end(f.body1, j.node1) << "\n";
+  if (j.node1 >= 0 || j.node2 >= 0) {  // a revolute at a node: its axes turned with the section
+    const NodeJointView view = node_joint_view(frame, j.body1, j.node1, j.body2, j.node2, true, "    ");
+    o << view.code;
+    frame = "f", motions = view.motions;
+  }
+  o << "    const mbrt::JointSpringLoad e = mbrt::joint_spring(" << n << ", mbrt::" << (planar_ ? "planar_" : "")
+    << (prismatic ? "prismatic" : "revolute") << "_coordinate(" << frame << ", " << motions[0] << ", " << motions[1] << "));\n";
+  joint_axis_load(o, prismatic, f.body1, f.body2, "e.value", frame + ".a1", frame + ".s1", frame + ".s2", j.node1, j.node2);
   o << "    l.elastic_energy += e.energy;\n  }\n";
 }
 

@@ -106,10 +106,17 @@ void Emitter::joint_axis_load(std::ostringstream& o, bool force, int body1, int 
 void Emitter::input_load(std::ostringstream& o, const Input& in, const InputPlan& p) const {
   const std::string n = in.name;
   const auto end = [&](int b, int k) { return k >= 0 ? modal_node_label(b, k) : m_.body_name(b); };
-  o << "  {  // input " << n << ": " << type_row(in.type).name << " " << input_target(in) << " on " << end(p.body2, in.node2)
-    << ", reaction on " << end(p.body1, in.node1) << "\n";
-  joint_axis_load(o, in.type == InputType::joint_force, p.body1, p.body2, "u[input::" + n + "]", n + "_axis", n + "_s1",
-                  n + "_s2", in.node1, in.node2);
+  const Joint* j = in.joint >= 0 ? &m_.joints[static_cast<size_t>(in.joint)] : nullptr;
+  const int node1 = j ? j->node1 : in.node1, node2 = j ? j->node2 : in.node2;
+  o << "  {  // input " << n << ": " << type_row(in.type).name << " " << input_target(in) << " on " << end(p.body2, node2)
+    << ", reaction on " << end(p.body1, node1) << "\n";
+  if (j && (node1 >= 0 || node2 >= 0)) {  // a revolute at a node: about its axis turned with the section
+    o << node_joint_view(j->name + "_frame", j->body1, node1, j->body2, node2, true, "    ").code;
+    joint_axis_load(o, false, p.body1, p.body2, "u[input::" + n + "]", "f.a1", "f.s1", "f.s2", node1, node2);
+  } else {
+    joint_axis_load(o, in.type == InputType::joint_force, p.body1, p.body2, "u[input::" + n + "]", n + "_axis", n + "_s1",
+                    n + "_s2", node1, node2);
+  }
   o << "  }\n";
 }
 
@@ -134,9 +141,16 @@ void Emitter::outputs_function(std::ostringstream& o) const {
     }
     if (out.joint >= 0) {
       const Joint& j = m_.joints[static_cast<size_t>(out.joint)];
-      o << "  y[output::" << out.name << "] = mbrt::" << (revolute_output(out) ? "revolute" : "prismatic")
-        << "_coordinate(" << j.name << "_frame, " << motion(j.body1) << ", " << motion(j.body2) << ")."
-        << (out.type == OutputType::joint_position ? "position" : "velocity") << ";\n";
+      const std::string value = out.type == OutputType::joint_position ? "position" : "velocity";
+      const std::string kernel = std::string("mbrt::") + (revolute_output(out) ? "revolute" : "prismatic") + "_coordinate(";
+      if (j.node1 >= 0 || j.node2 >= 0) {  // its axes turned with the node's section
+        const NodeJointView view = node_joint_view(j.name + "_frame", j.body1, j.node1, j.body2, j.node2, true, "    ");
+        o << "  {  // at a modal body's node\n" << view.code << "    y[output::" << out.name << "] = " << kernel << "f, " << view.motions[0]
+          << ", " << view.motions[1] << ")." << value << ";\n  }\n";
+        continue;
+      }
+      o << "  y[output::" << out.name << "] = " << kernel << j.name << "_frame, " << motion(j.body1) << ", " << motion(j.body2) << ")."
+        << value << ";\n";
       continue;
     }
     if (out.node >= 0) {

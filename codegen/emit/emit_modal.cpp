@@ -129,30 +129,41 @@ bool Emitter::turns_axes(const ConstraintBlock& b) {
          (b.joint_type != JointType::spherical && b.joint_type != JointType::distance);
 }
 
-std::string Emitter::modal_node_block(int j) const {
-  const ConstraintBlock& b = block(j);
-  const auto label = [&](int body, int node) { return node >= 0 ? modal_node_label(body, node) : m_.body_name(body); };
-  std::string out = "  {  // " + b.kernel + " " + label(b.body1, b.node1) + " - " + label(b.body2, b.node2) + "\n" +
-                    "    mbrt::JointFrame f = " + b.name + "_frame;\n";
-  std::string motions[2] = {motion(b.body1), motion(b.body2)}, columns;
-  const int bodies[2] = {b.body1, b.body2}, nodes[2] = {b.node1, b.node2};
+Emitter::NodeJointView Emitter::node_joint_view(const std::string& frame, int body1, int node1, int body2, int node2, bool turns,
+                                                const std::string& indent) const {
+  NodeJointView view{indent + "mbrt::JointFrame f = " + frame + ";\n", {motion(body1), motion(body2)}};
+  const int bodies[2] = {body1, body2}, nodes[2] = {node1, node2};
   for (int e = 0; e < 2; ++e) {
     const int i = bodies[e], k = nodes[e];
     if (k < 0) continue;
     const int m = plan(i).modal;
     const std::string N = std::to_string(modes_of(i)), x = "node" + std::to_string(e + 1);
-    const std::string args = body(i).name + "_modal, " + modal_node_constant(i, k) + ", " + pose(i) + ", k.vel" + at(i) + ", " +
-                             modal_coordinates(m, "modal_q");
-    out += "    const mbrt::ModalPointMotion<" + N + "> " + x + " = mbrt::modal_point_motion<" + N + ">(" + args + ", " +
-           modal_coordinates(m, "modal_p") + ");\n" + "    f.s" + std::to_string(e + 1) + " = " + x + ".point;\n";
-    if (turns_axes(b)) out += "    f = mbrt::turned_joint_frame(f, " + std::to_string(e + 1) + ", " + x + ".turn.C);\n";
-    motions[e] = "mbrt::BodyMotion{" + pose(i) + ", " + x + ".velocity}";
-    columns += "    " + jq(j, i) + " = mbrt::modal_node_rows<" + N + ", " + std::to_string(rows(j)) + ">(" + args + ", " + x + ", " +
-               rows_of(j) + "." + (e == 0 ? "J1" : "J2") + ", " + rows_of(j) + ".quad);\n";
+    view.code += indent + "const mbrt::ModalPointMotion<" + N + "> " + x + " = mbrt::modal_point_motion<" + N + ">(" + body(i).name +
+                 "_modal, " + modal_node_constant(i, k) + ", " + pose(i) + ", k.vel" + at(i) + ", " + modal_coordinates(m, "modal_q") +
+                 ", " + modal_coordinates(m, "modal_p") + ");\n" + indent + "f.s" + std::to_string(e + 1) + " = " + x + ".point;\n";
+    if (turns) view.code += indent + "f = mbrt::turned_joint_frame(f, " + std::to_string(e + 1) + ", " + x + ".turn.C);\n";
+    view.motions[static_cast<size_t>(e)] = "mbrt::BodyMotion{" + pose(i) + ", " + x + ".velocity}";
+  }
+  return view;
+}
+
+std::string Emitter::modal_node_block(int j) const {
+  const ConstraintBlock& b = block(j);
+  const auto label = [&](int body, int node) { return node >= 0 ? modal_node_label(body, node) : m_.body_name(body); };
+  const NodeJointView view = node_joint_view(b.name + "_frame", b.body1, b.node1, b.body2, b.node2, turns_axes(b), "    ");
+  std::string columns;
+  const int bodies[2] = {b.body1, b.body2}, nodes[2] = {b.node1, b.node2};
+  for (int e = 0; e < 2; ++e) {
+    const int i = bodies[e];
+    if (nodes[e] < 0) continue;
+    const std::string N = std::to_string(modes_of(i));
+    columns += "    " + jq(j, i) + " = mbrt::modal_node_rows<" + N + ", " + std::to_string(rows(j)) + ">(" + body(i).name + "_modal, " +
+               modal_node_constant(i, nodes[e]) + ", " + pose(i) + ", k.vel" + at(i) + ", " + modal_coordinates(plan(i).modal, "modal_q") +
+               ", node" + std::to_string(e + 1) + ", " + rows_of(j) + "." + (e == 0 ? "J1" : "J2") + ", " + rows_of(j) + ".quad);\n";
   }
   const std::string target = b.function ? ",\n        " + driver_function_value(b) : "";
-  return out + "    " + rows_of(j) + " = mbrt::" + b.kernel + "(f, " + motions[0] + ", " + motions[1] + target + ");\n" + columns +
-         "  }\n";
+  return "  {  // " + b.kernel + " " + label(b.body1, b.node1) + " - " + label(b.body2, b.node2) + "\n" + view.code + "    " + rows_of(j) +
+         " = mbrt::" + b.kernel + "(f, " + view.motions[0] + ", " + view.motions[1] + target + ");\n" + columns + "  }\n";
 }
 
 std::string Emitter::reaction_frame(int j) const {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <iomanip>
 #include <memory>
@@ -197,6 +198,16 @@ class Emitter {
   std::vector<int> modal_nodes(int i) const;  // the nodes the outputs, forces and inputs name, ascending
   std::string modal_node_output(const Output& out, const std::string& at) const;
   void modal_force_load(std::ostringstream& o, const Force& f, const std::string& n) const;
+  // A joint at a modal body's node as the kernels see it: code (at `indent`)
+  // declaring `f`, the joint's frame `frame` with each node's deformed place
+  // and, where `turns`, its section's turned axes, and node1 / node2 (the
+  // nodes' ModalPointMotion); and the motions to pass the kernels.
+  struct NodeJointView {
+    std::string code;
+    std::array<std::string, 2> motions;
+  };
+  NodeJointView node_joint_view(const std::string& frame, int body1, int node1, int body2, int node2, bool turns,
+                                const std::string& indent) const;
   // constraint_rows' line for block j, a joint (or its driver) at a modal body's node.
   std::string modal_node_block(int j) const;
   // The node's place (world) for reactions, at the state's deformation.

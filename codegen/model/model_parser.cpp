@@ -1103,10 +1103,8 @@ Contact parse_unilateral_contact(const Value& item, const Model& model, std::map
   return c;
 }
 
-// A joint named by `v` whose type is one of `types`; returns its index. Of
-// the joints that hold a modal body's node, only drivers take one.
-int read_joint_ref(const Value& v, const Model& model, const std::vector<JointType>& types, const std::string& role,
-                   bool driver = false) {
+// A joint named by `v` whose type is one of `types`; returns its index.
+int read_joint_ref(const Value& v, const Model& model, const std::vector<JointType>& types, const std::string& role) {
   const std::string joint_name = read_string(v, "a joint name");
   for (std::size_t i = 0; i < model.joints.size(); ++i) {
     const Joint& j = model.joints[i];
@@ -1115,9 +1113,6 @@ int read_joint_ref(const Value& v, const Model& model, const std::vector<JointTy
       std::string names;
       for (JointType t : types) names += (names.empty() ? "" : " or ") + std::string(type_row(t).name);
       fail(v, role + " needs a " + names + " joint; '" + joint_name + "' is not one");
-    }
-    if (!driver && (j.node1 >= 0 || j.node2 >= 0)) {
-      fail(v, "joint '" + joint_name + "' holds a modal body's node: " + role + " on it is not modelled (a driver is)");
     }
     return static_cast<int>(i);
   }
@@ -1298,7 +1293,7 @@ Driver parse_driver(const Value& item, const Model& model, std::map<std::string,
     const std::vector<JointType> joints = d.type == DriverType::joint_angle
                                               ? std::vector{JointType::revolute, JointType::cylindrical}
                                               : std::vector{JointType::prismatic, JointType::cylindrical};
-    d.joint = read_joint_ref(s.get("joint"), model, joints, "a " + type.node.Scalar() + " driver", true);
+    d.joint = read_joint_ref(s.get("joint"), model, joints, "a " + type.node.Scalar() + " driver");
   }
   d.function = parse_function(s.get("function"));
   return d;
