@@ -265,8 +265,20 @@ StableStep estimate_stable_step(const Model& m, const std::vector<ModalPlan>& mo
     K.bottomRightCorner(n, n) = p.omega.cwiseAbs2().asDiagonal();
     // A spring at a node stiffens the modes: k J^T J, J the node's motion
     // [I, -[x]x, Psi] in body axes, summed over the three directions (an
-    // upper bound on the one it pulls along).
+    // upper bound on the one it pulls along); a joint spring at a node, its
+    // section's turn about the joint's axis a, a^T [0, I, Theta].
+    const Eigen::Matrix3d to_body = mbrt::rotation_matrix(m.bodies[static_cast<size_t>(beam.body)].orientation).transpose();
     for (const Force& f : m.forces) {
+      if (f.type == ForceType::joint_spring) {
+        const Joint& j = m.joints[static_cast<size_t>(f.joint)];
+        for (const auto& [body, node] : {std::pair{j.body1, j.node1}, std::pair{j.body2, j.node2}}) {
+          if (body != beam.body || node < 0) continue;
+          const Eigen::RowVector3d a = (to_body * j.axis).transpose();
+          Eigen::RowVectorXd J(6 + n);
+          J << Eigen::RowVector3d::Zero(), a, a * modal_node(p, node).rotation;
+          K += f.stiffness * J.transpose() * J;
+        }
+      }
       if (f.type != ForceType::spring_damper) continue;
       for (const auto& [body, node] : {std::pair{f.body1, f.node1}, std::pair{f.body2, f.node2}}) {
         if (body != beam.body || node < 0) continue;
