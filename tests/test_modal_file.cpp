@@ -111,6 +111,25 @@ SettledLoads settle(State s, Step step, Outputs y, OutputsOf outputs, LoadOutput
 
 }  // namespace
 
+TEST_CASE("a static shape of a file's structure gives the torque at its massless rotation its closed form") {
+  // frame_s (tests/models/modal_file_loads.yaml): two modes and the static
+  // shape of a torque about z at the tip, under M = 1.5 N m there; L = 1 m,
+  // EI = 100 N m^2 (x-y). Euler-Bernoulli: turned by M x / EI, at M x^2 / (2 EI).
+  namespace l = mbrt::models::modal_file_loads;
+  l::State s = l::initial_state();
+  for (int i = 0; i < static_cast<int>(std::lround(10.0 / l::kStep)); ++i) REQUIRE(l::step(s) == mbrt::StepStatus::ok);
+  l::Outputs y{};
+  l::outputs(s, y);
+  const double M = 1.5, L = 1.0, EI = 100.0;
+  const double tip = y[l::output::tip_s + 1], tip_turn = 2 * y[l::output::tip_s + 6], middle_turn = 2 * y[l::output::middle_s + 6];
+  MESSAGE("tip " << tip << " m (" << M * L * L / (2 * EI) << "), turned " << tip_turn << " rad (" << M * L / EI << "), middle turned "
+                 << middle_turn << " (" << M * L / (2 * EI) << ")");
+  CHECK(tip == doctest::Approx(M * L * L / (2 * EI)).epsilon(1e-6).scale(0));
+  // A small turn's Euler parameters: 2 e = theta (1 - theta^2 / 24).
+  CHECK(tip_turn == doctest::Approx(M * L / EI).epsilon(1e-4).scale(0));
+  CHECK(middle_turn == doctest::Approx(M * L / (2 * EI)).epsilon(1e-4).scale(0));
+}
+
 TEST_CASE("modal bodies from data files, held and loaded, settle at the closed-form static displacements") {
   namespace l = mbrt::models::modal_file_loads;
   namespace b = mbrt::models::modal_file_loads_blajer;
@@ -497,6 +516,16 @@ TEST_CASE("the generator names the data file, its line and what is wrong") {
         std::string::npos);
   CHECK(generator_error(part + "forces:\n  - {type: torque, body1: ground, body2: part@b, axis: [0, 0, 1], value: 1}\n", kInline)
             .find("node 'b' of modal body 'part' has no rotations (coordinates: 3 in ") != std::string::npos);
+  // Static loads at a structure's nodes: by name, along its own coordinates.
+  const auto loaded = [&](const std::string& loads) {
+    return generator_error(body + chain.path.string() + ", modes: 2, static_loads: " + loads + "}\n", kInline);
+  };
+  CHECK(loaded("{b: [x, y]}") == "");
+  CHECK(loaded("{b: [rz]}").find("static_loads.b[0]: expected one of: x, y, z, got 'rz'") != std::string::npos);
+  CHECK(loaded("{root: [x]}").find("node 'root' is clamped: a load there does not deform the structure") != std::string::npos);
+  CHECK(loaded("{c: [x]}").find("unknown node 'c' of modal body 'part'") != std::string::npos);
+  CHECK(generator_error(body + kModels + "/modal_data/chain_modes.yaml, modes: 2, static_loads: {b: [x]}}\n", kInline)
+            .find("static_loads need the structure's stiffness and clamped nodes; ") != std::string::npos);
   // A free structure's given modes must carry no rigid-body motion: here the
   // first moves every node alike.
   const std::string free_modes =

@@ -329,7 +329,7 @@ struct ModalSource {
   double length = 0.0, EA = 0.0, GJ = 0.0, EIy = 0.0, EIz = 0.0, rho_A = 0.0, rho_J = 0.0;
   double damping = 0.0;  // beam: s, stiffness-proportional
   int elements = 0;
-  std::vector<int> static_loads;  // beam: coordinates (6 a node) whose unit loads' static shapes join the modes
+  std::vector<int> static_loads;  // coordinates (6 a node; a structure's, its own) whose unit loads' static shapes join the modes
   std::optional<ModalStructure> structure;  // instead of the beam
   double damping_ratio = 0.0;               // structure: of critical, every mode
   int nodes() const { return structure ? static_cast<int>(structure->nodes.size()) : elements + 1; }

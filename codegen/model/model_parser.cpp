@@ -34,7 +34,7 @@ const Keys kBodyKeys = {"name",        "mass",     "particle", "inertia", "posit
 const Keys kFlexibleBodyKeys = {"name", "flexible", "position", "orientation", "velocity", "angular_velocity"};
 const Keys kBeamKeys = {"length", "elements", "EA", "GA", "GJ", "EI", "rho_A", "rho_J", "damping", "modes", "static_loads"};
 // A modal body from a file (docs/flexible.md, "Modal data from a file").
-const Keys kModalFileBodyKeys = {"file", "modes", "damping_ratio"};
+const Keys kModalFileBodyKeys = {"file", "modes", "damping_ratio", "static_loads"};
 const Keys kModalFileKeys = {"coordinates", "nodes", "clamped", "stiffness", "modes", "geometric_stiffness"};
 const Keys kModalFileNodeKeys = {"name", "position", "mass", "inertia"};
 const Keys kModalFileModeKeys = {"frequency", "shape"};
@@ -504,32 +504,52 @@ Eigen::Vector3d modal_node_place(const Model& model, int body, int k) {
   return b.position + mbrt::rotation_matrix(b.orientation) * modal_source(model, body)->node_place(k);
 }
 
-// A modal beam's static loads, {NODE: [DIRECTION, ...], ...}: the
-// coordinates (6 a node: x, y, z, rx, ry, rz) whose unit loads' static shapes
-// join the modes kept, at most kMaxModes in all.
-std::vector<int> read_static_loads(const Value& v, const std::string& body, int elements, int modes) {
-  const std::string expected = "a map of nodes to load directions, such as {tip: [y, rz]}";
+// A modal body's static loads, {NODE: [DIRECTION, ...], ...}: the
+// coordinates (a beam's 6 a node: x, y, z, rx, ry, rz; a structure's, its
+// own) whose unit loads' static shapes join the modes kept, at most
+// kMaxModes in all. A beam's nodes are root, tip or K, a structure's its
+// names or numbers.
+std::vector<int> read_static_loads(const Value& v, const ModalSource& source, const std::string& body) {
+  const ModalStructure* st = source.structure ? &*source.structure : nullptr;
+  const std::string expected = std::string("a map of nodes to load directions, such as {") + (st ? st->nodes.back().name : "tip") + ": [y]}";
   if (!v.node.IsMap() || v.node.size() == 0) fail_expected(v, expected);
-  const Keys directions(kNodeCoordinateNames.begin(), kNodeCoordinateNames.end());
+  if (st && (st->stiffness.size() == 0 || st->clamped.empty())) {
+    fail(v, "static_loads need the structure's stiffness and clamped nodes; " + st->file + " gives " +
+                (st->stiffness.size() == 0 ? "modes" : "no clamped nodes"));
+  }
+  const int per_node = st ? st->coordinates : 6;
+  const Keys directions(kNodeCoordinateNames.begin(), kNodeCoordinateNames.begin() + per_node);
   std::vector<int> coordinates;
   for (const auto& entry : v.node) {
     const Value key{entry.first, v.key, location(v.where.file, entry.first.Mark())};
     const Value list{entry.second, v.key + "." + entry.first.Scalar(), location(v.where.file, entry.second.Mark())};
-    const int node = node_number(key, "modal body", body, read_string(key, "a node (root, tip or K)"), elements);
-    if (node == 0) fail(key, "the root is clamped: a load there does not bend the beam; name another node");
-    if (!list.node.IsSequence() || list.node.size() == 0) fail_expected(list, "a list of directions (x, y, z, ry, rz)");
+    int node = -1;
+    if (st) {
+      const std::string name = read_string(key, "a node of " + st->file);
+      for (size_t k = 0; k < st->nodes.size(); ++k) {
+        if (st->nodes[k].name == name || std::to_string(k) == name) node = static_cast<int>(k);
+      }
+      if (node < 0) fail(key, "unknown node '" + excerpt(name) + "' of modal body '" + body + "' (its nodes in " + st->file + ")");
+      if (std::find(st->clamped.begin(), st->clamped.end(), node) != st->clamped.end()) {
+        fail(key, "node '" + name + "' is clamped: a load there does not deform the structure; name another node");
+      }
+    } else {
+      node = node_number(key, "modal body", body, read_string(key, "a node (root, tip or K)"), source.elements);
+      if (node == 0) fail(key, "the root is clamped: a load there does not bend the beam; name another node");
+    }
+    if (!list.node.IsSequence() || list.node.size() == 0) fail_expected(list, "a list of directions (" + join(directions) + ")");
     for (std::size_t i = 0; i < list.node.size(); ++i) {
       const Value item = element(list, i);
       const std::string d = read_choice(item, directions);
-      if (d == "rx") fail(item, "rx twists the beam, and its modes leave torsion out; load it along x, y, z, ry or rz");
-      const int c = 6 * node + static_cast<int>(std::find(directions.begin(), directions.end(), d) - directions.begin());
+      if (!st && d == "rx") fail(item, "rx twists the beam, and its modes leave torsion out; load it along x, y, z, ry or rz");
+      const int c = per_node * node + static_cast<int>(std::find(directions.begin(), directions.end(), d) - directions.begin());
       if (std::find(coordinates.begin(), coordinates.end(), c) != coordinates.end()) fail(item, "'" + d + "' given twice for this node");
       coordinates.push_back(c);
     }
   }
-  if (modes + static_cast<int>(coordinates.size()) > kMaxModes) {
-    fail(v, std::to_string(modes) + " modes and " + std::to_string(coordinates.size()) + " static loads make " +
-                std::to_string(modes + static_cast<int>(coordinates.size())) + " modes; a body keeps at most " +
+  if (source.modes + static_cast<int>(coordinates.size()) > kMaxModes) {
+    fail(v, std::to_string(source.modes) + " modes and " + std::to_string(coordinates.size()) + " static loads make " +
+                std::to_string(source.modes + static_cast<int>(coordinates.size())) + " modes; a body keeps at most " +
                 std::to_string(kMaxModes) + ": keep fewer modes or loads");
   }
   return coordinates;
@@ -736,6 +756,7 @@ void parse_modal_file_body(const std::string& name, const Value& item, const Sec
   source.modes = read_integer_at_least(f.get("modes"), 1);
   if (source.modes > kMaxModes) fail_expected(f.get("modes"), "at most " + std::to_string(kMaxModes) + " modes");
   if (auto z = f.find("damping_ratio")) source.damping_ratio = read_non_negative(*z);
+  if (auto v = f.find("static_loads")) source.static_loads = read_static_loads(*v, source, name);
   Body frame;
   frame.name = name;
   frame.where = item.where;
@@ -791,7 +812,7 @@ void parse_flexible_body(const Value& item, const Section& s, std::map<std::stri
     beam.length = length, beam.EA = section.EA, beam.GJ = section.GJ, beam.EIy = section.EIy, beam.EIz = section.EIz;
     beam.rho_A = rho_A, beam.rho_J = rho_J, beam.damping = section.damping, beam.elements = f.elements;
     if (beam.modes > kMaxModes) fail_expected(*modes, "at most " + std::to_string(kMaxModes) + " modes");
-    if (auto v = b.find("static_loads")) beam.static_loads = read_static_loads(*v, f.name, f.elements, beam.modes);
+    if (auto v = b.find("static_loads")) beam.static_loads = read_static_loads(*v, beam, f.name);
     // Six modes converge long before; the modes' eigenproblem grows as the cube.
     if (beam.elements > 60) fail_expected(b.get("elements"), "at most 60 elements for a modal body");
     Body frame;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -116,37 +117,42 @@ Eigen::MatrixXd restrict(const Eigen::MatrixXd& A, const std::vector<int>& rows,
 
 }  // namespace
 
-// The modes kept and the static shapes of unit loads at `coordinates` (the
-// clamped beam's displacement under each, MacNeal 1971; Rubin 1975),
-// turned into one mass-orthonormal basis with a diagonal stiffness: the
-// eigenvectors of the beam's stiffness and mass on their span, ascending.
+// The modes kept and the static shapes of unit loads at coordinates `loads`
+// of stiffness K and mass M, those in `held` (clamped) kept still
+// (MacNeal 1971; Rubin 1975), turned into one mass-orthonormal basis with a
+// diagonal stiffness: the eigenvectors of K and M on their span, ascending.
 // Each shape then carries its load's static response exactly, which the
 // modes alone, free at the nodes, approach slowly (a moment at the tip).
-static void add_static_shapes(const BeamProperties& beam, const std::vector<int>& coordinates, Eigen::MatrixXd& shapes,
-                       Eigen::VectorXd& omega) {
-  const BeamMatrices m = assemble_beam(beam);
-  const Eigen::Index n = shapes.rows(), kept = shapes.cols(), added = static_cast<Eigen::Index>(coordinates.size());
+// `where` names a load's coordinate for the error of one that adds nothing.
+static void add_static_shapes(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const std::vector<int>& held,
+                              const std::vector<int>& loads, const std::function<std::string(int)>& where,
+                              Eigen::MatrixXd& shapes, Eigen::VectorXd& omega) {
+  const Eigen::Index n = shapes.rows(), kept = shapes.cols(), added = static_cast<Eigen::Index>(loads.size());
+  std::vector<int> free;
+  for (int i = 0; i < n; ++i) {
+    if (std::find(held.begin(), held.end(), i) == held.end()) free.push_back(i);
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> stiffness(restrict(K, free, free));
   Eigen::MatrixXd basis(n, kept + added);
   basis.leftCols(kept) = shapes;
   for (Eigen::Index k = 0; k < added; ++k) {
-    Eigen::VectorXd load = Eigen::VectorXd::Zero(n);
-    load[coordinates[static_cast<size_t>(k)]] = 1.0;
-    Eigen::VectorXd u = clamped_static_displacement(beam, load);
+    Eigen::VectorXd load = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(free.size()));
+    load[std::find(free.begin(), free.end(), loads[static_cast<size_t>(k)]) - free.begin()] = 1.0;
+    const Eigen::VectorXd u_free = stiffness.solve(load);
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+    for (size_t i = 0; i < free.size(); ++i) u[free[i]] = u_free[static_cast<Eigen::Index>(i)];
     // What the modes kept and the shapes before it leave out, in the mass's
     // norm: a shape they already hold would make the basis singular.
-    const double size = std::sqrt(u.dot(m.M * u));
+    const double size = std::sqrt(u.dot(M * u));
     const Eigen::MatrixXd before = basis.leftCols(kept + k);
-    u -= before * (before.transpose() * m.M * before).ldlt().solve(before.transpose() * m.M * u);
-    if (!(std::sqrt(u.dot(m.M * u)) > 1e-6 * size)) {
-      const int c = coordinates[static_cast<size_t>(k)], node = c / kNodeCoordinates;
-      throw std::invalid_argument("static_loads: the load at node " + (node == beam.elements ? std::string("tip") : std::to_string(node)) +
-                                  " along " + kNodeCoordinateNames[static_cast<size_t>(c % kNodeCoordinates)] +
-                                  " moves the beam as the modes kept and the loads before it already do; drop it");
+    u -= before * (before.transpose() * M * before).ldlt().solve(before.transpose() * M * u);
+    if (!(std::sqrt(u.dot(M * u)) > 1e-6 * size)) {
+      throw std::invalid_argument("static_loads: the load at " + where(loads[static_cast<size_t>(k)]) +
+                                  " moves the body as the modes kept and the loads before it already do; drop it");
     }
     basis.col(kept + k) = u;
   }
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(basis.transpose() * m.K * basis,
-                                                                      basis.transpose() * m.M * basis);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(basis.transpose() * K * basis, basis.transpose() * M * basis);
   shapes = basis * eig.eigenvectors();
   omega = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   fix_signs(shapes);
@@ -185,7 +191,13 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping,
     p.omega[k] = all.omega[chosen[static_cast<size_t>(k)]];
   }
   if (!static_loads.empty()) {
-    add_static_shapes(beam, static_loads, shapes, p.omega);
+    const BeamMatrices m = assemble_beam(beam);
+    const auto where = [&](int c) {
+      const int node = c / kNodeCoordinates;
+      return "node " + (node == beam.elements ? std::string("tip") : std::to_string(node)) + " along " +
+             kNodeCoordinateNames[static_cast<size_t>(c % kNodeCoordinates)];
+    };
+    add_static_shapes(m.K, m.M, {0, 1, 2, 3, 4, 5}, static_loads, where, shapes, p.omega);  // the root held
     p.modes = static_cast<int>(shapes.cols());
   }
   p.damping = damping * p.omega.cwiseAbs2();
@@ -253,7 +265,7 @@ std::array<Eigen::MatrixXd, 9> structure_geometric_stiffness(const ModalStructur
 
 }  // namespace
 
-ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double damping_ratio) {
+ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double damping_ratio, const std::vector<int>& static_loads) {
   const int c = s.coordinates, nodes = static_cast<int>(s.nodes.size()), n = c * nodes;
   const auto fail = [&](const std::string& what) { throw std::invalid_argument(s.file + ": " + what); };
   const auto coordinate = [&](int i) {
@@ -371,6 +383,15 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
       }
     }
   }
+  if (!static_loads.empty()) {
+    if (s.stiffness.size() == 0 || s.clamped.empty()) fail("static_loads need the stiffness of a structure with clamped nodes");
+    std::vector<int> held;
+    for (const int node : s.clamped) {
+      for (int i = 0; i < c; ++i) held.push_back(c * node + i);
+    }
+    add_static_shapes(s.stiffness, M, held, static_loads, coordinate, shapes, omega);
+    modes = static_cast<int>(shapes.cols());
+  }
   fix_signs(shapes);
 
   ModalPlan p;
@@ -419,7 +440,7 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
 }
 
 ModalPlan plan_modal(const ModalSource& source) {
-  if (source.structure) return plan_modal_structure(*source.structure, source.modes, source.damping_ratio);
+  if (source.structure) return plan_modal_structure(*source.structure, source.modes, source.damping_ratio, source.static_loads);
   return plan_modal_body({source.length, source.EA, source.GJ, source.EIy, source.EIz, source.rho_A, source.rho_J, source.elements},
                          source.modes, source.damping, source.static_loads);
 }

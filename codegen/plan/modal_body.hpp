@@ -65,8 +65,11 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping,
 // none: the 6 rigid-body modes dropped; coordinates without mass condensed
 // out, Guyan 1965), or as the file gives them, scaled to unit modal mass in
 // the nodes' lumped mass. Damping: `damping_ratio` of critical. Geometric
-// stiffness: the file's load cases on the modes. Throws std::invalid_argument naming the file and what is wrong.
-ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double damping_ratio);
+// stiffness: the file's load cases on the modes. Static loads (coordinates,
+// `coordinates` a node) add their static shapes as plan_modal_body's do, for
+// a structure given by its stiffness with clamped nodes. Throws
+// std::invalid_argument naming the file and what is wrong.
+ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double damping_ratio, const std::vector<int>& static_loads = {});
 
 // Either, as the model gives it (the frame body not set).
 ModalPlan plan_modal(const ModalSource& source);
