@@ -492,7 +492,7 @@ TEST_CASE("the generator takes a modal beam's static loads and says what is wron
   // One element bends in each plane in two ways, which four modes already hold.
   CHECK(generator_error("name: one\nbodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 1, modes: 4, static_loads: "
                         "{tip: [y]}, EA: 1.0e6, GJ: 500.0, EI: [800.0, 900.0], rho_A: 2.0, rho_J: 0.01}\n")
-            .find("bodies.boom.flexible.static_loads: static_loads: the load at node tip along y moves the beam as the modes "
+            .find("bodies.boom.flexible.static_loads: static_loads: the load at node tip along y moves the body as the modes "
                   "kept and the loads before it already do; drop it") != std::string::npos);
   CHECK(generator_error("name: nodal\nbodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 4, static_loads: {tip: [y]}, "
                         "EA: 1.0e6, GJ: 500.0, EI: [800.0, 900.0], rho_A: 2.0, rho_J: 0.01}\n")

@@ -511,7 +511,8 @@ Eigen::Vector3d modal_node_place(const Model& model, int body, int k) {
 // names or numbers.
 std::vector<int> read_static_loads(const Value& v, const ModalSource& source, const std::string& body) {
   const ModalStructure* st = source.structure ? &*source.structure : nullptr;
-  const std::string expected = std::string("a map of nodes to load directions, such as {") + (st ? st->nodes.back().name : "tip") + ": [y]}";
+  const std::string expected = std::string("a map of nodes to load directions, such as {") + (st ? st->nodes.back().name : "tip") + ": [y, " +
+                               (st && st->coordinates == 3 ? "z" : "rz") + "]}";
   if (!v.node.IsMap() || v.node.size() == 0) fail_expected(v, expected);
   if (st && (st->stiffness.size() == 0 || st->clamped.empty())) {
     fail(v, "static_loads need the structure's stiffness and clamped nodes; " + st->file + " gives " +
