@@ -431,6 +431,17 @@ const ModalSource* modal_source(const Model& model, int body) {
   return nullptr;
 }
 
+// A structure's node by name or number (0 first), of modal body `body`.
+int structure_node(const Value& v, const ModalStructure& st, const std::string& body, const std::string& node) {
+  Keys names;
+  for (size_t k = 0; k < st.nodes.size(); ++k) {
+    if (st.nodes[k].name == node || std::to_string(k) == node) return static_cast<int>(k);
+    names.push_back(st.nodes[k].name);
+  }
+  fail(v, "unknown node '" + excerpt(node) + "' of modal body '" + body + "' (its nodes in " + st.file + ": " + join(names) +
+              ", or 0 to " + std::to_string(st.nodes.size() - 1) + ")");
+}
+
 // A modal body's node: a beam's root, tip or K (0 <= K <= elements), a
 // structure's node by name or number (0 first); the body in `body`; -1 when
 // `name` is not a modal body.
@@ -439,14 +450,7 @@ int read_modal_node(const Value& v, const Model& model, const std::string& name,
     if (model.bodies[static_cast<size_t>(source.body)].name != name) continue;
     body = source.body;
     if (!source.structure) return node_number(v, "modal body", name, node, source.elements);
-    const std::vector<ModalNodeData>& nodes = source.structure->nodes;
-    Keys names;
-    for (size_t k = 0; k < nodes.size(); ++k) {
-      if (nodes[k].name == node || std::to_string(k) == node) return static_cast<int>(k);
-      names.push_back(nodes[k].name);
-    }
-    fail(v, "unknown node '" + excerpt(node) + "' of modal body '" + name + "' (its nodes in " + source.structure->file +
-                ": " + join(names) + ", or 0 to " + std::to_string(nodes.size() - 1) + ")");
+    return structure_node(v, *source.structure, name, node);
   }
   return -1;
 }
@@ -511,7 +515,7 @@ Eigen::Vector3d modal_node_place(const Model& model, int body, int k) {
 // names or numbers.
 std::vector<int> read_static_loads(const Value& v, const ModalSource& source, const std::string& body) {
   const ModalStructure* st = source.structure ? &*source.structure : nullptr;
-  const std::string expected = std::string("a map of nodes to load directions, such as {") + (st ? st->nodes.back().name : "tip") + ": [y, " +
+  const std::string expected = std::string("a map of nodes to load directions, such as {") + (st ? "NODE" : "tip") + ": [y, " +
                                (st && st->coordinates == 3 ? "z" : "rz") + "]}";
   if (!v.node.IsMap() || v.node.size() == 0) fail_expected(v, expected);
   if (st && (st->stiffness.size() == 0 || st->clamped.empty())) {
@@ -527,10 +531,7 @@ std::vector<int> read_static_loads(const Value& v, const ModalSource& source, co
     int node = -1;
     if (st) {
       const std::string name = read_string(key, "a node of " + st->file);
-      for (size_t k = 0; k < st->nodes.size(); ++k) {
-        if (st->nodes[k].name == name || std::to_string(k) == name) node = static_cast<int>(k);
-      }
-      if (node < 0) fail(key, "unknown node '" + excerpt(name) + "' of modal body '" + body + "' (its nodes in " + st->file + ")");
+      node = structure_node(key, *st, body, name);
       if (std::find(st->clamped.begin(), st->clamped.end(), node) != st->clamped.end()) {
         fail(key, "node '" + name + "' is clamped: a load there does not deform the structure; name another node");
       }
@@ -538,7 +539,9 @@ std::vector<int> read_static_loads(const Value& v, const ModalSource& source, co
       node = node_number(key, "modal body", body, read_string(key, "a node (root, tip or K)"), source.elements);
       if (node == 0) fail(key, "the root is clamped: a load there does not bend the beam; name another node");
     }
-    if (!list.node.IsSequence() || list.node.size() == 0) fail_expected(list, "a list of directions (" + join(directions) + ")");
+    if (!list.node.IsSequence() || list.node.size() == 0) {
+      fail_expected(list, st ? "a list of directions (" + join(directions) + ")" : "a list of directions (x, y, z, ry, rz)");
+    }
     for (std::size_t i = 0; i < list.node.size(); ++i) {
       const Value item = element(list, i);
       const std::string d = read_choice(item, directions);

@@ -136,8 +136,12 @@ static void add_static_shapes(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M
   Eigen::MatrixXd basis(n, kept + added);
   basis.leftCols(kept) = shapes;
   for (Eigen::Index k = 0; k < added; ++k) {
+    const auto at = std::find(free.begin(), free.end(), loads[static_cast<size_t>(k)]);
+    if (at == free.end()) {
+      throw std::invalid_argument("static_loads: the load at " + where(loads[static_cast<size_t>(k)]) + " is held still; name a free node");
+    }
     Eigen::VectorXd load = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(free.size()));
-    load[std::find(free.begin(), free.end(), loads[static_cast<size_t>(k)]) - free.begin()] = 1.0;
+    load[at - free.begin()] = 1.0;
     const Eigen::VectorXd u_free = stiffness.solve(load);
     Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
     for (size_t i = 0; i < free.size(); ++i) u[free[i]] = u_free[static_cast<Eigen::Index>(i)];

@@ -50,7 +50,7 @@ struct ModalBody {
   // then per m/s^2 of the frame's acceleration less gravity along x, y, z
   // (body axes); bit k of kg_cases set where case k is not zero. The
   // acceleration cases are the Hessians D_a of the first moment
-  // c(q) = St^T q + (q^T D_a q / 2)_a.
+  // c(q) = St q + (q^T D_a q / 2)_a.
   std::array<ModeMatrix, 9> kg;
   unsigned kg_cases = 0;
   std::array<ModeMatrix, 9> E;                  // int Psi_a^T Psi_b dm, index 3 a + b
@@ -91,7 +91,7 @@ inline bool has_case(const ModalBody<N>& b, unsigned k) noexcept {
 }  // namespace modal_detail
 
 // The deformed body's first moment about the frame's origin (body axes),
-// c(q) = St^T q + (q^T D_a q / 2)_a: the shortening shifts the mass back.
+// c(q) = St q + (q^T D_a q / 2)_a: the shortening shifts the mass back.
 template <int N>
 inline Vec3 modal_first_moment(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
   Vec3 c = b.St_T.transpose() * q;
