@@ -90,17 +90,6 @@ inline bool has_case(const ModalBody<N>& b, unsigned k) noexcept {
 
 }  // namespace modal_detail
 
-// The deformed body's first moment about the frame's origin (body axes),
-// c(q) = St q + (q^T D_a q / 2)_a: the shortening shifts the mass back.
-template <int N>
-inline Vec3 modal_first_moment(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
-  Vec3 c = b.St_T.transpose() * q;
-  for (unsigned a = 0; a < 3; ++a) {
-    if (modal_detail::has_case(b, modal_detail::kAccelerationCase + a)) c[a] += 0.5 * q.dot(b.kg[modal_detail::kAccelerationCase + a] * q);
-  }
-  return c;
-}
-
 // St(q)^T = (dc/dq)^T: column a is St^T's plus D_a q.
 template <int N>
 inline Eigen::Matrix<double, N, 3> translation_coupling_transpose(const ModalBody<N>& b,
@@ -110,6 +99,15 @@ inline Eigen::Matrix<double, N, 3> translation_coupling_transpose(const ModalBod
     if (modal_detail::has_case(b, modal_detail::kAccelerationCase + a)) T.col(a) += b.kg[modal_detail::kAccelerationCase + a] * q;
   }
   return T;
+}
+
+// The deformed body's first moment about the frame's origin (body axes),
+// c(q) = St q + (q^T D_a q / 2)_a: the shortening shifts the mass back. c is
+// quadratic in q, so c(q) = (St + St(q)) q / 2, with St(q)^T as formed.
+template <int N>
+inline Vec3 modal_first_moment(const ModalBody<N>& b, const Eigen::Matrix<double, N, 3>& coupling_transpose,
+                               const Eigen::Matrix<double, N, 1>& q) noexcept {
+  return 0.5 * ((b.St_T + coupling_transpose).transpose() * q);
 }
 
 // Sr(q)^T = (int (rho0 + u) x Psi)^T: row j is int (rho0 + u) x Psi_j, whose
@@ -164,7 +162,7 @@ inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerPar
                                            const Eigen::Matrix<double, N, 1>& q) noexcept {
   Eigen::Matrix<double, N, 6> S_T;
   S_T << translation_coupling_transpose<N>(b, q), turn_coupling_transpose<N>(b, q);
-  const Mat3 c = skew(modal_first_moment<N>(b, q));
+  const Mat3 c = skew(modal_first_moment<N>(b, S_T.template leftCols<3>(), q));
   Eigen::Matrix<double, 6, 6> reduced = -S_T.transpose() * S_T;
   reduced.topLeftCorner<3, 3>().diagonal().array() += b.m;
   reduced.topRightCorner<3, 3>() -= c;
@@ -212,9 +210,11 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
   const Vec3 vb = R.transpose() * v, gb = R.transpose() * g;
   const Eigen::Matrix<double, N, 3> St_T = translation_coupling_transpose<N>(b, q), Sr_T = turn_coupling_transpose<N>(b, q);
   const Modes qd = p - St_T * vb - Sr_T * w;
-  const Vec3 c = modal_first_moment<N>(b, q), cd = St_T.transpose() * qd;  // int u, int udot
-  // c's second derivative less St(q) qddot: the shortening's (qdot^T D_a qdot)_a.
-  const Vec3 cdd_bias = 2.0 * (modal_first_moment<N>(b, qd) - b.St_T.transpose() * qd);
+  const Vec3 c = modal_first_moment<N>(b, St_T, q), cd = St_T.transpose() * qd;  // int u, int udot
+  // St(q)'s rate is D_a qdot: it gives c's second derivative less St(q) qddot,
+  // the shortening's (qdot^T D_a qdot)_a, and p's change with vb.
+  const Eigen::Matrix<double, N, 3> St_T_rate = translation_coupling_transpose<N>(b, qd) - b.St_T;
+  const Vec3 cdd_bias = St_T_rate.transpose() * qd;
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);  // int rho udot^T
   // Rigid: the frame's centrifugal, Coriolis and gyroscopic terms, gravity on the deformation.
   const Vec3 f = -(w.cross(w.cross(c)) + 2.0 * w.cross(cd) + cdd_bias);
@@ -244,9 +244,7 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
   fq -= 2.0 * coriolis;
   load.f += R * (f - St_T.transpose() * fq);
   load.tau += tau - Sr_T.transpose() * fq;
-  // dp/dt also takes the change of St(q)^T vb with q, (D_a qdot) vb_a.
-  const Modes shortening_rate = (translation_coupling_transpose<N>(b, qd) - b.St_T) * vb;
-  return {fq - St_T * w.cross(vb) + coriolis + shortening_rate, 0.5 * q.dot(b.stiffness.cwiseProduct(q)) - gb.dot(c)};
+  return {fq - St_T * w.cross(vb) + coriolis + St_T_rate * vb, 0.5 * q.dot(b.stiffness.cwiseProduct(q)) - gb.dot(c)};
 }
 
 // The body's kinetic energy, with the deformed body's inertia terms.
@@ -254,8 +252,9 @@ template <int N>
 inline double modal_kinetic_energy(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
                                    const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p) noexcept {
   const Vec3 vb = R.transpose() * v;
-  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(b, R, v, w, q, p);
-  const Vec3 c = modal_first_moment<N>(b, q), cd = translation_coupling_transpose<N>(b, q).transpose() * qd;
+  const Eigen::Matrix<double, N, 3> St_T = translation_coupling_transpose<N>(b, q);
+  const Eigen::Matrix<double, N, 1> qd = p - St_T * vb - turn_coupling_transpose<N>(b, q) * w;
+  const Vec3 c = modal_first_moment<N>(b, St_T, q), cd = St_T.transpose() * qd;
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);
   return 0.5 * b.m * vb.squaredNorm() + vb.dot(w.cross(c) + cd) + 0.5 * w.dot(modal_inertia<N>(b, q) * w) +
          w.dot(modal_detail::vee_of(P)) + 0.5 * qd.squaredNorm();
