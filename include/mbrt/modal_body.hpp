@@ -157,18 +157,24 @@ struct ModalInverseMass {
   Mat3 R;
 };
 
+// The frame's reduced mass Mf(q) - S(q) S(q)^T in (v body, w body).
 template <int N>
-inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerParameters& p,
-                                           const Eigen::Matrix<double, N, 1>& q) noexcept {
+inline Eigen::Matrix<double, 6, 6> modal_reduced_mass(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
   Eigen::Matrix<double, N, 6> S_T;
   S_T << translation_coupling_transpose<N>(b, q), turn_coupling_transpose<N>(b, q);
   const Mat3 c = skew(modal_first_moment<N>(b, S_T.template leftCols<3>(), q));
   Eigen::Matrix<double, 6, 6> reduced = -S_T.transpose() * S_T;
-  reduced.topLeftCorner<3, 3>().diagonal().array() += b.m;
-  reduced.topRightCorner<3, 3>() -= c;
-  reduced.bottomLeftCorner<3, 3>() += c;
-  reduced.bottomRightCorner<3, 3>() += modal_inertia<N>(b, q);
-  return {reduced.llt().solve(Eigen::Matrix<double, 6, 6>::Identity()), rotation_matrix(p)};
+  reduced.template topLeftCorner<3, 3>().diagonal().array() += b.m;
+  reduced.template topRightCorner<3, 3>() -= c;
+  reduced.template bottomLeftCorner<3, 3>() += c;
+  reduced.template bottomRightCorner<3, 3>() += modal_inertia<N>(b, q);
+  return reduced;
+}
+
+template <int N>
+inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerParameters& p,
+                                           const Eigen::Matrix<double, N, 1>& q) noexcept {
+  return {modal_reduced_mass<N>(b, q).llt().solve(Eigen::Matrix<double, 6, 6>::Identity()), rotation_matrix(p)};
 }
 
 inline Vec6 inverse_mass_times(const ModalInverseMass& b, const Wrench& w) noexcept {
