@@ -332,10 +332,10 @@ TEST_CASE("the generator holds a modal body's node by a point joint, and refuses
   CHECK(off.find("joints.prop") != std::string::npos);
   CHECK(off.find("node 10 of modal body 'boom', which is at (2.000000, 0.000000, 0.000000") != std::string::npos);
   const std::string slider = generator_error("name: slider\n" + beam + "joints:\n" + clamp +
-                                             "  - {name: slider, type: prismatic, body1: ground, body2: boom@tip, "
-                                             "point: [2, 0, 0], axis: [0, 0, 1]}\n");
-  CHECK(slider.find("a prismatic joint attaches to modal body 'boom' at its root: name the body; only spherical, "
-                    "distance, revolute, universal and fixed joints take one of its nodes") != std::string::npos);
+                                             "  - {name: slider, type: screw, body1: ground, body2: boom@tip, "
+                                             "point: [2, 0, 0], axis: [0, 0, 1], lead: 0.01}\n");
+  CHECK(slider.find("a screw joint attaches to modal body 'boom' at its root: name the body; only spherical, "
+                    "distance, revolute, universal, fixed, prismatic and cylindrical joints take one of its nodes") != std::string::npos);
   // Pinned at both ends along its axis, a beam of bending modes cannot bend
   // without stretching; propped (its frame clamped, unable to turn) it can.
   const std::string pinned = generator_error(

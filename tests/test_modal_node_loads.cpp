@@ -129,10 +129,10 @@ TEST_CASE("the generator places a force at a modal body's node, and refuses a re
       "forces:\n  - {type: spring_damper, body1: ground, body2: boom@5, point1: [1, 1, 0], stiffness: 10, rest_length: 1}\n");
   CHECK(spring == "");
   const std::string joint = generator_error("name: node\n" + beam +
-                                            "joints:\n  - {name: pin, type: cylindrical, body1: ground, body2: boom@tip, "
+                                            "joints:\n  - {name: pin, type: planar, body1: ground, body2: boom@tip, "
                                             "point: [2, 0, 0], axis: [0, 0, 1]}\n");
-  CHECK(joint.find("a cylindrical joint attaches to modal body 'boom' at its root: name the body; only spherical, distance, "
-                   "revolute, universal and fixed joints take one of its nodes") != std::string::npos);
+  CHECK(joint.find("a planar joint attaches to modal body 'boom' at its root: name the body; only spherical, distance, "
+                   "revolute, universal, fixed, prismatic and cylindrical joints take one of its nodes") != std::string::npos);
   CHECK(generator_error("name: far\n" + beam + pin + "forces:\n  - {type: force, body: boom@11, vector: [0, 1, 0]}\n")
             .find("unknown node '11' of modal body 'boom' (root, tip or 0 to 10)") != std::string::npos);
 }

@@ -28,6 +28,8 @@
 #include "modal_momenta.hpp"
 #include "modal_node_spring.hpp"
 #include "modal_node_spring_blajer.hpp"
+#include "modal_node_slider.hpp"
+#include "modal_node_slider_blajer.hpp"
 #include "modal_node_turns.hpp"
 #include "modal_node_turns_baumgarte.hpp"
 #include "modal_node_turns_blajer.hpp"
@@ -246,40 +248,48 @@ TEST_CASE("beams held at nodes by fixed and revolute joints settle and swing as 
 
 namespace {
 
-// The arm on a sprung, driven hinge at the tip node (tests/models/modal_node_spring.yaml),
-// 15 s with the input held at `torque`: settled tip, its turn and the hinge's
-// angle, and the largest gap between the hinge's rate output and the
-// central difference of its angle output.
-struct SprungHinge {
-  double tip, slope, angle, rate_gap, largest_rate;
+// A sprung, driven joint at the tip node (tests/models/modal_node_spring.yaml,
+// a hinge carrying an arm; modal_node_slider.yaml, a slide carrying a
+// slider), 15 s with the input held at `input`: settled tip, its turn and the
+// joint's coordinate, and the largest gap between the joint's rate output and
+// the central difference of its coordinate output.
+struct SprungJoint {
+  double tip, slope, coordinate, rate_gap, largest_rate;
 };
 
-namespace spring = mbrt::models::modal_node_spring;
+struct SprungJointSignals {
+  int input, tip, coordinate, rate;  // the model's input and output indices
+};
 
 template <class State, class Outputs, class Step, class Out>
-SprungHinge settle_sprung_hinge(State s, double h, double torque, Step step, Out outputs) {
-  s.inputs[spring::input::motor] = torque;
+SprungJoint settle_sprung_joint(State s, double h, double input, SprungJointSignals at, Step step, Out outputs) {
+  s.inputs[static_cast<size_t>(at.input)] = input;
   Outputs y{};
-  std::vector<double> tip, slope, angle, rate;
+  std::vector<double> tip, slope, coordinate, rate;
   const int steps = static_cast<int>(std::lround(15.0 / h));
   for (int i = 0; i < steps; ++i) {
     REQUIRE(step(s) == mbrt::StepStatus::ok);
     outputs(s, y);
-    tip.push_back(y[spring::output::tip + 1]), slope.push_back(turn_z(&y[spring::output::tip]));
-    angle.push_back(y[spring::output::hinge_angle]), rate.push_back(y[spring::output::hinge_rate]);
+    tip.push_back(y[static_cast<size_t>(at.tip + 1)]), slope.push_back(turn_z(&y[static_cast<size_t>(at.tip)]));
+    coordinate.push_back(y[static_cast<size_t>(at.coordinate)]), rate.push_back(y[static_cast<size_t>(at.rate)]);
   }
-  SprungHinge r{settled(tip, h), settled(slope, h), settled(angle, h), 0, 0};
-  for (size_t i = 1; i + 1 < angle.size(); ++i) {
-    r.rate_gap = std::max(r.rate_gap, std::abs(rate[i] - (angle[i + 1] - angle[i - 1]) / (2 * h)));
+  SprungJoint r{settled(tip, h), settled(slope, h), settled(coordinate, h), 0, 0};
+  for (size_t i = 1; i + 1 < coordinate.size(); ++i) {
+    r.rate_gap = std::max(r.rate_gap, std::abs(rate[i] - (coordinate[i + 1] - coordinate[i - 1]) / (2 * h)));
     r.largest_rate = std::max(r.largest_rate, std::abs(rate[i]));
   }
   return r;
 }
 
-#define SETTLE_SPRUNG_HINGE(NS, TORQUE)                                                                              \
-  settle_sprung_hinge<mbrt::models::NS::State, mbrt::models::NS::Outputs>(                                           \
-      mbrt::models::NS::initial_state(), mbrt::models::NS::kStep, TORQUE, [](auto& s) { return mbrt::models::NS::step(s); }, \
+#define SETTLE_SPRUNG_JOINT(NS, INPUT, SIGNALS)                                                                               \
+  settle_sprung_joint<mbrt::models::NS::State, mbrt::models::NS::Outputs>(                                                    \
+      mbrt::models::NS::initial_state(), mbrt::models::NS::kStep, INPUT, SIGNALS, [](auto& s) { return mbrt::models::NS::step(s); }, \
       [](const auto& s, auto& y) { mbrt::models::NS::outputs(s, y); })
+
+namespace spring = mbrt::models::modal_node_spring;
+namespace slider = mbrt::models::modal_node_slider;
+const SprungJointSignals kHinge{spring::input::motor, spring::output::tip, spring::output::hinge_angle, spring::output::hinge_rate};
+const SprungJointSignals kSlide{slider::input::motor, slider::output::tip, slider::output::slide_position, slider::output::slide_rate};
 
 }  // namespace
 
@@ -288,15 +298,38 @@ TEST_CASE("a joint spring and a joint input on a revolute joint at a modal node 
   const CantileverModes modes(6, EI, rho_A, L);
   const Eigen::VectorXd c = modes.loaded(L, F, F * d);
   for (const double torque : {0.0, 0.2}) {
-    for (const SprungHinge& r : {SETTLE_SPRUNG_HINGE(modal_node_spring, torque), SETTLE_SPRUNG_HINGE(modal_node_spring_blajer, torque)}) {
+    for (const SprungJoint& r :
+         {SETTLE_SPRUNG_JOINT(modal_node_spring, torque, kHinge), SETTLE_SPRUNG_JOINT(modal_node_spring_blajer, torque, kHinge)}) {
       // The force stays along y while the arm turns by slope + angle.
-      const double held = (F * d * std::cos(r.slope + r.angle) + torque) / k;
+      const double held = (F * d * std::cos(r.slope + r.coordinate) + torque) / k;
       MESSAGE("input " << torque << " N m: tip " << r.tip << " m, turned " << r.slope << " rad (six modes " << modes.at(c, L) << ", "
-                       << modes.at(c, L, 1) << "), hinge " << r.angle << " rad ((F d + input) / k " << held
+                       << modes.at(c, L, 1) << "), hinge " << r.coordinate << " rad ((F d + input) / k " << held
                        << "), rate output off its angle's differences by " << r.rate_gap << " of " << r.largest_rate << " rad/s");
       CHECK(r.tip == doctest::Approx(modes.at(c, L)).epsilon(0.005).scale(0));
       CHECK(r.slope == doctest::Approx(modes.at(c, L, 1)).epsilon(0.005).scale(0));
-      CHECK(r.angle == doctest::Approx(held).epsilon(0.002).scale(0));
+      CHECK(r.coordinate == doctest::Approx(held).epsilon(0.002).scale(0));
+      CHECK(r.rate_gap < 1e-3 * r.largest_rate);
+    }
+  }
+}
+
+TEST_CASE("a joint spring and a joint input on a prismatic joint at a modal node slide along the node's turned section") {
+  const double EI = 100.0, rho_A = 1.0, L = 1.0, F = 1.0, k = 50.0;
+  const CantileverModes modes(6, EI, rho_A, L);
+  for (const double push : {0.0, 0.2}) {
+    for (const SprungJoint& r :
+         {SETTLE_SPRUNG_JOINT(modal_node_slider, push, kSlide), SETTLE_SPRUNG_JOINT(modal_node_slider_blajer, push, kSlide)}) {
+      // The slide's axis turns with the section; the force keeps along y.
+      const double held = (F * std::cos(r.slope) + push) / k;
+      // The tip carries F and the moment of the slide's offset along the turned axis.
+      const Eigen::VectorXd c = modes.loaded(L, F, -F * r.coordinate * std::sin(r.slope));
+      MESSAGE("input " << push << " N: tip " << r.tip << " m, turned " << r.slope << " rad (six modes " << modes.at(c, L) << ", "
+                       << modes.at(c, L, 1) << "; F L^3 / (3 EI) " << F * L * L * L / (3 * EI) << "), slide " << r.coordinate
+                       << " m ((F cos turn + input) / k " << held << "), rate output off its differences by " << r.rate_gap << " of "
+                       << r.largest_rate << " m/s");
+      CHECK(r.tip == doctest::Approx(modes.at(c, L)).epsilon(0.002).scale(0));
+      CHECK(r.slope == doctest::Approx(modes.at(c, L, 1)).epsilon(0.002).scale(0));
+      CHECK(r.coordinate == doctest::Approx(held).epsilon(1e-4).scale(0));
       CHECK(r.rate_gap < 1e-3 * r.largest_rate);
     }
   }

@@ -597,7 +597,7 @@ void Emitter::joint_spring_load(std::ostringstream& o, const Force& f, const std
   std::array<std::string, 2> motions = {motion(f.body1), motion(f.body2)};
   const auto end = [&](int b, int k) { return k >= 0 ? modal_node_label(b, k) : m_.body_name(b); };
   o << "  {  // joint_spring " << j.name << " on " << end(f.body2, j.node2) << ", reaction on " << end(f.body1, j.node1) << "\n";
-  if (j.node1 >= 0 || j.node2 >= 0) {  // a revolute at a node: its axes turned with the section
+  if (j.node1 >= 0 || j.node2 >= 0) {  // a joint at a node: its axes turned with the section
     const NodeJointView view = node_joint_view(frame, j.body1, j.node1, j.body2, j.node2, true, "    ");
     o << view.code;
     frame = "f", motions = view.motions;

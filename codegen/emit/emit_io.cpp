@@ -89,10 +89,12 @@ void Emitter::joint_axis_load(std::ostringstream& o, bool force, int body1, int 
                               const std::string& axis, const std::string& s1, const std::string& s2, int node1,
                               int node2) const {
   if (force) {
-    o << "    const mbrt::" << (planar_ ? "Vec2" : "Vec3") << " f = " << value << " * (" << pose(body1) << ".R * "
+    o << "    const mbrt::" << (planar_ ? "Vec2" : "Vec3") << " force = " << value << " * (" << pose(body1) << ".R * "
       << axis << (planar_ ? ".head<2>()" : "") << ");\n";
-    if (body2 != kGround) o << "    mbrt::add_point_force(l.w" << at(body2) << ", " << pose(body2) << ", " << s2 << ", f);\n";
-    if (body1 != kGround) o << "    mbrt::add_point_force(l.w" << at(body1) << ", " << pose(body1) << ", " << s1 << ", -f);\n";
+    for (const auto& [b, k, s, f] : {std::tuple{body2, node2, s2, "force"}, std::tuple{body1, node1, s1, "-force"}}) {
+      if (b == kGround) continue;
+      o << (k >= 0 ? node_force(b, k, f) : "    mbrt::add_point_force(l.w" + at(b) + ", " + pose(b) + ", " + s + ", " + f + ");\n");
+    }
   } else if (planar_) {
     o << "    const double t = " << value << " * " << axis << ".z();\n";
     if (body2 != kGround) o << "    l.w" << at(body2) << ".tau += t;\n";
@@ -110,9 +112,10 @@ void Emitter::input_load(std::ostringstream& o, const Input& in, const InputPlan
   const int node1 = j ? j->node1 : in.node1, node2 = j ? j->node2 : in.node2;
   o << "  {  // input " << n << ": " << type_row(in.type).name << " " << input_target(in) << " on " << end(p.body2, node2)
     << ", reaction on " << end(p.body1, node1) << "\n";
-  if (j && (node1 >= 0 || node2 >= 0)) {  // a revolute at a node: about its axis turned with the section
+  if (j && (node1 >= 0 || node2 >= 0)) {  // a joint at a node: about or along its axis turned with the section
     o << node_joint_view(j->name + "_frame", j->body1, node1, j->body2, node2, true, "    ").code;
-    joint_axis_load(o, false, p.body1, p.body2, "u[input::" + n + "]", "f.a1", "f.s1", "f.s2", node1, node2);
+    joint_axis_load(o, in.type == InputType::joint_force, p.body1, p.body2, "u[input::" + n + "]", "f.a1", "f.s1", "f.s2", node1,
+                    node2);
   } else {
     joint_axis_load(o, in.type == InputType::joint_force, p.body1, p.body2, "u[input::" + n + "]", n + "_axis", n + "_s1",
                     n + "_s2", node1, node2);

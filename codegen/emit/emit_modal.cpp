@@ -80,15 +80,16 @@ std::vector<int> Emitter::modal_nodes(int i) const {
 // A force or spring_damper acting at a modal body's node: the node's place
 // and velocity from the modal coordinates, the frame's load at that place,
 // and the modes' share in l.modal, which modal_loads takes as applied.
+std::string Emitter::node_force(int b, int k, const std::string& force) const {
+  const int m = plan(b).modal;
+  const std::string N = "<" + std::to_string(a_.modal[static_cast<size_t>(m)].modes) + ">";
+  return "    l.modal" + modal_slot(m) + ".head" + N + "() += mbrt::modal_point_force" + N + "(" + modal_node_constant(b, k) +
+         ", " + pose(b) + ".R, " + modal_coordinates(m, "modal_q") + ", " + force + ", l.w" + at(b) + ");\n";
+}
+
 void Emitter::modal_force_load(std::ostringstream& o, const Force& f, const std::string& n) const {
-  const auto end = [&](int b, int k, const std::string& force) {
-    const int m = plan(b).modal;
-    const std::string N = "<" + std::to_string(a_.modal[static_cast<size_t>(m)].modes) + ">";
-    return "    l.modal" + modal_slot(m) + ".head" + N + "() += mbrt::modal_point_force" + N + "(" + modal_node_constant(b, k) +
-           ", " + pose(b) + ".R, " + modal_coordinates(m, "modal_q") + ", " + force + ", l.w" + at(b) + ");\n";
-  };
   if (f.type == ForceType::force) {
-    o << "  {  // force at " << modal_node_label(f.body, f.node) << "\n" << end(f.body, f.node, n + "_vector") << "  }\n";
+    o << "  {  // force at " << modal_node_label(f.body, f.node) << "\n" << node_force(f.body, f.node, n + "_vector") << "  }\n";
     return;
   }
   o << "  {  // spring_damper " << (f.node1 >= 0 ? modal_node_label(f.body1, f.node1) : m_.body_name(f.body1)) << " - "
@@ -113,7 +114,7 @@ void Emitter::modal_force_load(std::ostringstream& o, const Force& f, const std:
     const int b = bodies[e];
     if (b == kGround) continue;
     const std::string force = e == 0 ? "-e.f2" : "e.f2";
-    if (nodes[e] >= 0) o << end(b, nodes[e], force);
+    if (nodes[e] >= 0) o << node_force(b, nodes[e], force);
     else o << "    mbrt::add_point_force(l.w" << at(b) << ", " << pose(b) << ", spring.s" << (e + 1) << ", " << force << ");\n";
   }
   o << "    l.elastic_energy += e.energy;\n  }\n";

@@ -219,6 +219,9 @@ class Emitter {
   // The torque `t` (world, in scope) on body2, its reaction on body1, either
   // at a modal body's node (k >= 0) or on the body.
   void torque_on_ends(std::ostringstream& o, int body1, int node1, int body2, int node2) const;
+  // The force `force` (world) on modal body b at its node k: the frame's load
+  // there and the modes' share in l.modal.
+  std::string node_force(int b, int k, const std::string& force) const;
 
   // emit_parameters.cpp: runtime parameters (docs/parameters.md).
   const Parameter* tunable(ParameterTarget target, int index, int component = 0) const;

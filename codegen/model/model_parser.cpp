@@ -985,17 +985,19 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
                     model.body_name(j.body1) + "')");
   }
   // A joint holds a modal body's node where it deforms to, and one with axes
-  // turns them with its section's small rotations; sliding along or about
-  // a section is not modelled.
+  // turns them with its section's small rotations (a prismatic or
+  // cylindrical one slides along the section's turned axis).
   const bool point_joint = j.type == JointType::spherical || j.type == JointType::distance;
-  const bool at_nodes = point_joint || j.type == JointType::revolute || j.type == JointType::universal || j.type == JointType::fixed;
+  const bool at_nodes = point_joint || j.type == JointType::revolute || j.type == JointType::universal || j.type == JointType::fixed ||
+                        j.type == JointType::prismatic || j.type == JointType::cylindrical;
   for (const auto& [value, body, node] : {std::tuple{body1, j.body1, j.node1}, std::tuple{body2, j.body2, j.node2}}) {
     if (node < 0) continue;
     if (!at_nodes) {
       const bool beam = !modal_source(model, body)->structure;
       fail(value, "a " + type.node.Scalar() + " joint attaches to modal body '" + model.body_name(body) + "' " +
                       (beam ? "at its root" : "at one of its clamped nodes' places") +
-                      ": name the body; only spherical, distance, revolute, universal and fixed joints take one of its nodes");
+                      ": name the body; only spherical, distance, revolute, universal, fixed, prismatic and cylindrical joints take one of "
+                      "its nodes");
     }
     if (!point_joint) check_node_turns(value, model, body, node, "a " + type.node.Scalar() + " joint's torque");
   }

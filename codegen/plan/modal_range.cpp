@@ -98,7 +98,7 @@ std::string modal_range_warning(const Model& m, const StableStep& s, const std::
     o << "warning: " << m.name << ": modal body " << m.body_name(p.body) << ": its frame's reduced mass stops being"
       << " positive definite at a strain energy of " << format(r.strain_energy) << " J (node " << r.node << " displaced "
       << format(r.node_displacement) << " m, " << format(100 * r.node_displacement / r.span) << " % of the body's "
-      << format(r.span) << " m); past it the step's factor of that mass is wrong (staggered-pcst goes non-finite, the other schemes run on a wrong inverse); "
+      << format(r.span) << " m); past it the step's factor of that mass is wrong, and a step can stop (staggered-pcst, non-finite or with its constraint matrix no longer positive definite) or run on a wrong inverse, which moves the frame wrongly where its joints do not hold it; "
       << (loaded ? "the scene's drivers, inputs or forces can bend it that far"
                  : "the scene can release " + format(s.energy_bound) + " J")
       << ". Keep its deflection below that, or model it as a nodal beam (docs/flexible.md)";

@@ -3,9 +3,9 @@
 // takes the bending's shortening in the body's first moment but not in its
 // inertia or its modes' mass, so the reduced mass Mf(q) - S(q) S(q)^T loses
 // definiteness at a finite deflection; past it the step's Cholesky factor
-// of that mass is wrong (staggered-pcst goes non-finite, the other schemes
-// run on a wrong inverse). The generator finds that deflection and says so
-// before a run that could reach it.
+// of that mass is wrong: a step can stop, or run on a wrong inverse, which
+// moves the frame wrongly where its joints do not hold it. The generator
+// finds that deflection and says so before a run that could reach it.
 #pragma once
 
 #include <string>

@@ -266,7 +266,8 @@ StableStep estimate_stable_step(const Model& m, const std::vector<ModalPlan>& mo
     // A spring at a node stiffens the modes: k J^T J, J the node's motion
     // [I, -[x]x, Psi] in body axes, summed over the three directions (an
     // upper bound on the one it pulls along); a joint spring at a node, its
-    // section's turn about the joint's axis a, a^T [0, I, Theta].
+    // section's turn about the joint's axis a, a^T [0, I, Theta], or for a
+    // prismatic joint the node's motion along it, a^T [I, -[x]x, Psi].
     const Eigen::Matrix3d to_body = mbrt::rotation_matrix(m.bodies[static_cast<size_t>(beam.body)].orientation).transpose();
     for (const Force& f : m.forces) {
       if (f.type == ForceType::joint_spring) {
@@ -274,8 +275,13 @@ StableStep estimate_stable_step(const Model& m, const std::vector<ModalPlan>& mo
         for (const auto& [body, node] : {std::pair{j.body1, j.node1}, std::pair{j.body2, j.node2}}) {
           if (body != beam.body || node < 0) continue;
           const Eigen::RowVector3d a = (to_body * j.axis).transpose();
+          const ModalNode x = modal_node(p, node);
           Eigen::RowVectorXd J(6 + n);
-          J << Eigen::RowVector3d::Zero(), a, a * modal_node(p, node).rotation;
+          if (j.type == JointType::prismatic) {
+            J << a, -a * mbrt::skew(x.point), a * x.displacement;
+          } else {
+            J << Eigen::RowVector3d::Zero(), a, a * x.rotation;
+          }
           K += f.stiffness * J.transpose() * J;
         }
       }
