@@ -297,7 +297,7 @@ TEST_CASE("the generator refuses what a modal body cannot do, naming the key") {
   CHECK(generator_error("name: node\n" + beam +
                         "joints:\n  - {name: pin, type: planar, body1: ground, body2: boom@root, point: [0, 0, 0], axis: [0, 0, 1]}\n")
             .find("a planar joint attaches to modal body 'boom' at its root: name the body; only spherical, distance, "
-                  "revolute, universal, fixed, prismatic and cylindrical joints take one of its nodes") != std::string::npos);
+                  "revolute, universal, fixed and prismatic joints take one of its nodes") != std::string::npos);
 }
 
 TEST_CASE("the step with a modal body allocates nothing") { CHECK(allocations_in<SpinUp>(20000) == 0); }

@@ -112,7 +112,7 @@ TEST_CASE("a free modal body tied to a particle by a spring at its tip keeps the
   CHECK(fine.angular_momentum < coarse.angular_momentum / 6);
 }
 
-TEST_CASE("the generator places a force at a modal body's node, and refuses a revolute joint there or a point off the node") {
+TEST_CASE("the generator places a force at a modal body's node, and refuses a planar joint there or a point off the node") {
   const std::string beam =
       "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 4, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
       "rho_A: 2.0, rho_J: 0.01}\n";
@@ -132,7 +132,7 @@ TEST_CASE("the generator places a force at a modal body's node, and refuses a re
                                             "joints:\n  - {name: pin, type: planar, body1: ground, body2: boom@tip, "
                                             "point: [2, 0, 0], axis: [0, 0, 1]}\n");
   CHECK(joint.find("a planar joint attaches to modal body 'boom' at its root: name the body; only spherical, distance, "
-                   "revolute, universal, fixed, prismatic and cylindrical joints take one of its nodes") != std::string::npos);
+                   "revolute, universal, fixed and prismatic joints take one of its nodes") != std::string::npos);
   CHECK(generator_error("name: far\n" + beam + pin + "forces:\n  - {type: force, body: boom@11, vector: [0, 1, 0]}\n")
             .find("unknown node '11' of modal body 'boom' (root, tip or 0 to 10)") != std::string::npos);
 }

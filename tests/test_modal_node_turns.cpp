@@ -1,5 +1,5 @@
-// Joints that turn with a modal body's section (revolute, universal, fixed)
-// at its nodes (docs/flexible.md). Three clamped beams of six modes, settled
+// Joints that turn with a modal body's section (revolute, universal, fixed,
+// prismatic) at its nodes (docs/flexible.md). Three clamped beams of six modes, settled
 // under loads that the joints pass as forces and torques, against the same
 // six modes written down independently: Euler-Bernoulli's cantilever modes
 // in closed form (Ritz, with the joints' conditions on them), which also
@@ -9,7 +9,8 @@
 // tool and a flap by such joints keeps the bodies' energy, momentum and
 // angular momentum, at second order in the step, allocating nothing. A
 // joint spring and a joint_torque input on a revolute joint at a node, and
-// its angle and rate as outputs, against the same closed forms. A
+// its angle and rate as outputs, against the same closed forms; the same
+// for a prismatic joint sliding along the turned section's oblique axis. A
 // four-bar welded to a modal coupler's node keeps its energy less the
 // crank torque's work.
 #include <doctest/doctest.h>
@@ -319,13 +320,15 @@ TEST_CASE("a joint spring and a joint input on a prismatic joint at a modal node
   for (const double push : {0.0, 0.2}) {
     for (const SprungJoint& r :
          {SETTLE_SPRUNG_JOINT(modal_node_slider, push, kSlide), SETTLE_SPRUNG_JOINT(modal_node_slider_blajer, push, kSlide)}) {
-      // The slide's axis turns with the section; the force keeps along y.
-      const double held = (F * std::cos(r.slope) + push) / k;
-      // The tip carries F and the moment of the slide's offset along the turned axis.
-      const Eigen::VectorXd c = modes.loaded(L, F, -F * r.coordinate * std::sin(r.slope));
+      // The slide's axis, at pi/4 to the beam, turns with the section; the
+      // force keeps along y. The tip carries F and the moment of the slide's
+      // offset along the turned axis.
+      const double axis = std::numbers::pi / 4 + r.slope;
+      const double held = (F * std::sin(axis) + push) / k;
+      const Eigen::VectorXd c = modes.loaded(L, F, F * r.coordinate * std::cos(axis));
       MESSAGE("input " << push << " N: tip " << r.tip << " m, turned " << r.slope << " rad (six modes " << modes.at(c, L) << ", "
                        << modes.at(c, L, 1) << "; F L^3 / (3 EI) " << F * L * L * L / (3 * EI) << "), slide " << r.coordinate
-                       << " m ((F cos turn + input) / k " << held << "), rate output off its differences by " << r.rate_gap << " of "
+                       << " m ((F sin(pi/4 + turn) + input) / k " << held << "), rate output off its differences by " << r.rate_gap << " of "
                        << r.largest_rate << " m/s");
       CHECK(r.tip == doctest::Approx(modes.at(c, L)).epsilon(0.002).scale(0));
       CHECK(r.slope == doctest::Approx(modes.at(c, L, 1)).epsilon(0.002).scale(0));
@@ -481,7 +484,7 @@ TEST_CASE("the step holding modal nodes by joints that turn allocates nothing") 
   CHECK(allocations_in<Blajer>(2000) == 0);
 }
 
-TEST_CASE("the generator turns revolute, universal and fixed joints with a modal node's section, and refuses what it cannot") {
+TEST_CASE("the generator turns revolute, universal, fixed and prismatic joints with a modal node's section, and refuses what it cannot") {
   const std::string beam =
       "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 4, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
       "rho_A: 2.0, rho_J: 0.01}\n  - {name: arm, mass: 1.0, inertia: [0.01, 0.01, 0.01], position: [2.5, 0, 0]}\n";
@@ -505,6 +508,18 @@ TEST_CASE("the generator turns revolute, universal and fixed joints with a modal
   CHECK(with(hinge, "inputs:\n  - {name: motor, type: joint_torque, joint: hinge, min: -1, max: 1, safe: 0}\n") == "");
   CHECK(with("  - {name: hinge, type: revolute, body1: boom@tip, body2: arm, axis: [0, 0, 1], friction: {torque: 0.1}}\n")
             .find("joint 'hinge' holds a modal body's node: friction there is not modelled") != std::string::npos);
+  // A prismatic joint there takes a spring, an input and outputs, not a
+  // driver or friction; a cylindrical one is refused.
+  const std::string slide = "  - {name: slide, type: prismatic, body1: boom@tip, body2: arm, axis: [0, 1, 0]}\n";
+  CHECK(with(slide, "forces:\n  - {type: joint_spring, joint: slide, stiffness: 10.0}\n") == "");
+  CHECK(with(slide, "inputs:\n  - {name: push, type: joint_force, joint: slide, min: -1, max: 1, safe: 0}\n") == "");
+  CHECK(with(slide, "outputs:\n  - {name: at, type: joint_position, joint: slide}\n") == "");
+  CHECK(with(slide, "drivers:\n  - {name: move, type: joint_distance, joint: slide, function: {polynomial: [0, 1]}}\n")
+            .find("prismatic joint 'slide' holds a modal body's node: a driver there is not modelled") != std::string::npos);
+  CHECK(with("  - {name: slide, type: prismatic, body1: boom@tip, body2: arm, axis: [0, 1, 0], friction: {force: 0.1}}\n")
+            .find("joint 'slide' holds a modal body's node: friction there is not modelled") != std::string::npos);
+  CHECK(with("  - {name: slide, type: cylindrical, body1: boom@tip, body2: arm, axis: [0, 1, 0]}\n")
+            .find("a cylindrical joint attaches to modal body 'boom' at its root: name the body") != std::string::npos);
 }
 
 TEST_CASE("the generator takes a modal beam's static loads and says what is wrong with them") {

@@ -83,6 +83,8 @@ std::string Emitter::output_layout(const Output& out) const {
 // A torque `value` about the joint axis (`axis`, body-1 axes) on body2 with
 // the reaction on body1, or a force along it at the joint point of each body
 // (`s1`, `s2`); both points lie on the axis line, so the pair has no moment.
+// At a modal body's node (node1, node2 >= 0) the end's share goes to the
+// node's modes too.
 // Planar: the force along an axis in the plane, the torque about the normal,
 // z in plane coordinates (codegen/plan/planar_scene.cpp).
 void Emitter::joint_axis_load(std::ostringstream& o, bool force, int body1, int body2, const std::string& value,

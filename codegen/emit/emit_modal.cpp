@@ -77,9 +77,6 @@ std::vector<int> Emitter::modal_nodes(int i) const {
   return nodes;
 }
 
-// A force or spring_damper acting at a modal body's node: the node's place
-// and velocity from the modal coordinates, the frame's load at that place,
-// and the modes' share in l.modal, which modal_loads takes as applied.
 std::string Emitter::node_force(int b, int k, const std::string& force) const {
   const int m = plan(b).modal;
   const std::string N = "<" + std::to_string(a_.modal[static_cast<size_t>(m)].modes) + ">";
@@ -87,6 +84,9 @@ std::string Emitter::node_force(int b, int k, const std::string& force) const {
          ", " + pose(b) + ".R, " + modal_coordinates(m, "modal_q") + ", " + force + ", l.w" + at(b) + ");\n";
 }
 
+// A force or spring_damper acting at a modal body's node: the node's place
+// and velocity from the modal coordinates, the frame's load at that place,
+// and the modes' share in l.modal, which modal_loads takes as applied.
 void Emitter::modal_force_load(std::ostringstream& o, const Force& f, const std::string& n) const {
   if (f.type == ForceType::force) {
     o << "  {  // force at " << modal_node_label(f.body, f.node) << "\n" << node_force(f.body, f.node, n + "_vector") << "  }\n";

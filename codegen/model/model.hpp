@@ -77,7 +77,7 @@ struct Joint {
   JointType type = JointType::spherical;
   int body1 = kGround;
   int body2 = kGround;
-  int node1 = -1, node2 = -1;  // spherical, distance, revolute, universal, fixed: a modal body's node (NAME@K), else -1
+  int node1 = -1, node2 = -1;  // spherical, distance, revolute, universal, fixed, prismatic: a modal body's node (NAME@K), else -1
   Eigen::Vector3d point = Eigen::Vector3d::Zero();   // world, t = 0 (all but distance)
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // unit, world (revolute, cylindrical, prismatic, screw; planar: normal)
   Eigen::Vector3d axis1 = Eigen::Vector3d::UnitX();  // unit, world (universal, fixed in body 1)

@@ -985,19 +985,19 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
                     model.body_name(j.body1) + "')");
   }
   // A joint holds a modal body's node where it deforms to, and one with axes
-  // turns them with its section's small rotations (a prismatic or
-  // cylindrical one slides along the section's turned axis).
+  // turns them with its section's small rotations (a prismatic one slides
+  // along the section's turned axis).
   const bool point_joint = j.type == JointType::spherical || j.type == JointType::distance;
   const bool at_nodes = point_joint || j.type == JointType::revolute || j.type == JointType::universal || j.type == JointType::fixed ||
-                        j.type == JointType::prismatic || j.type == JointType::cylindrical;
+                        j.type == JointType::prismatic;
   for (const auto& [value, body, node] : {std::tuple{body1, j.body1, j.node1}, std::tuple{body2, j.body2, j.node2}}) {
     if (node < 0) continue;
     if (!at_nodes) {
       const bool beam = !modal_source(model, body)->structure;
       fail(value, "a " + type.node.Scalar() + " joint attaches to modal body '" + model.body_name(body) + "' " +
                       (beam ? "at its root" : "at one of its clamped nodes' places") +
-                      ": name the body; only spherical, distance, revolute, universal, fixed, prismatic and cylindrical joints take one of "
-                      "its nodes");
+                      ": name the body; only spherical, distance, revolute, universal, fixed and prismatic joints take one of its "
+                      "nodes");
     }
     if (!point_joint) check_node_turns(value, model, body, node, "a " + type.node.Scalar() + " joint's torque");
   }
@@ -1320,7 +1320,13 @@ Driver parse_driver(const Value& item, const Model& model, std::map<std::string,
     const std::vector<JointType> joints = d.type == DriverType::joint_angle
                                               ? std::vector{JointType::revolute, JointType::cylindrical}
                                               : std::vector{JointType::prismatic, JointType::cylindrical};
-    d.joint = read_joint_ref(s.get("joint"), model, joints, "a " + type.node.Scalar() + " driver");
+    const Value joint = s.get("joint");
+    d.joint = read_joint_ref(joint, model, joints, "a " + type.node.Scalar() + " driver");
+    const Joint& j = model.joints[static_cast<size_t>(d.joint)];
+    if (j.type == JointType::prismatic && (j.node1 >= 0 || j.node2 >= 0)) {
+      fail(joint, "prismatic joint '" + j.name + "' holds a modal body's node: a driver there is not modelled; drive a joint "
+                  "at the body's root, or push it with a joint_force input");
+    }
   }
   d.function = parse_function(s.get("function"));
   return d;

@@ -37,6 +37,7 @@ ModalRange search(const ModalPlan& p) {
   };
   const Modes stiffness = p.omega.cwiseAbs2();
   const double reach = kModalRangeSpan * r.span;
+  if (!(reach > 0.0)) return r;  // nodes in one place: no length to measure deflections by
   double least = INFINITY;  // t at unit strain stiffness d^T K d = 1: U = t^2 / 2
   std::mt19937 random(20261201u);
   std::normal_distribution<double> normal;
