@@ -42,7 +42,10 @@ constexpr int N = 3;
 using Modes = Eigen::Matrix<double, N, 1>;
 
 // A frame and its modes along smooth functions of time; p follows from its
-// definition, p = qdot + St^T R^T v + Sr(q)^T w (include/mbrt/modal_body.hpp).
+// definition, p = dT/dqdot, with T the kinetic energy of the modes' linear
+// field shifted by sigma(q) = (q^T D_a q / (2 m))_a (include/mbrt/modal_body.hpp):
+// formed here as the linear field's mass matrix in the shifted frame's
+// velocities, carried back by the shift, M = G^T M_lin G.
 struct Trajectory {
   mbrt::ModalBody<N> body;
   Vec3 r(double t) const { return {0.3 * t + 0.2 * t * t, std::sin(1.3 * t), 0.5 - 0.4 * t * t * t}; }
@@ -59,11 +62,49 @@ struct Trajectory {
     return {W(2, 1), W(0, 2), W(1, 0)};
   }
   Modes p(double t) const {
-    const Modes qd = (q(t + kD) - q(t - kD)) / (2 * kD);
-    // St(q)^T: St^T plus the first moment's Hessians (the acceleration cases) times q.
-    Eigen::Matrix<double, N, 3> St_T = body.St_T;
-    for (int a = 0; a < 3; ++a) St_T.col(a) += body.kg[static_cast<size_t>(6 + a)] * q(t);
-    return qd + St_T * (R(t).transpose() * v(t)) + mbrt::turn_coupling_transpose<N>(body, q(t)) * w(t);
+    const Modes x = q(t), qd = (q(t + kD) - q(t - kD)) / (2 * kD);
+    // The linear field rho0 + Psi q: first moment St q, inertia about the
+    // origin J + int (|u|^2 + 2 rho0 . u) I - rho0 u^T - u rho0^T - u u^T,
+    // Sr^T's rows int (rho0 + u) x Psi_j.
+    Mat3 X, W;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        X(a, b) = body.G[static_cast<size_t>(3 * a + b)].dot(x);
+        W(a, b) = x.dot(body.E[static_cast<size_t>(3 * a + b)] * x);
+      }
+    const Mat3 J = body.J + (2 * X.trace() + W.trace()) * Mat3::Identity() - X - X.transpose() - W;
+    Eigen::Matrix<double, N, 3> Sr_T = body.Sr_T;
+    for (int j = 0; j < N; ++j) {
+      Modes e = Modes::Zero();
+      e(j) = 1;
+      Vec3 moment;  // int u x Psi_j: component i is e_iab int u_a Psi_bj
+      for (int i = 0; i < 3; ++i) {
+        const int a = (i + 1) % 3, b = (i + 2) % 3;
+        moment(i) = x.dot(body.E[static_cast<size_t>(3 * a + b)] * e) - x.dot(body.E[static_cast<size_t>(3 * b + a)] * e);
+      }
+      Sr_T.row(j) += moment.transpose();
+    }
+    Eigen::Matrix<double, 6 + N, 6 + N> M_lin = Eigen::Matrix<double, 6 + N, 6 + N>::Zero();
+    M_lin.topLeftCorner<3, 3>() = body.m * Mat3::Identity();
+    M_lin.block<3, 3>(0, 3) = -mbrt::skew(body.St_T.transpose() * x);
+    M_lin.block<3, 3>(3, 0) = mbrt::skew(body.St_T.transpose() * x);
+    M_lin.block<3, 3>(3, 3) = J;
+    M_lin.block<3, N>(0, 6) = body.St_T.transpose();
+    M_lin.block<3, N>(3, 6) = Sr_T.transpose();
+    M_lin.block<N, 3>(6, 0) = body.St_T;
+    M_lin.block<N, 3>(6, 3) = Sr_T;
+    M_lin.bottomRightCorner<N, N>().setIdentity();
+    // The shift: v_shifted = v + w x sigma + (d sigma / dq) qdot.
+    Eigen::Matrix<double, 3, N> g;
+    for (int a = 0; a < 3; ++a) g.row(a) = (body.kg[static_cast<size_t>(6 + a)] * x).transpose() / body.m;
+    const Vec3 sigma = 0.5 * g * x;
+    Eigen::Matrix<double, 6 + N, 6 + N> G = Eigen::Matrix<double, 6 + N, 6 + N>::Identity();
+    G.block<3, 3>(0, 3) = -mbrt::skew(sigma);
+    G.block<3, N>(0, 6) = g;
+    const Eigen::Matrix<double, 6 + N, 6 + N> M = G.transpose() * M_lin * G;
+    Eigen::Matrix<double, 6 + N, 1> y;
+    y << R(t).transpose() * v(t), w(t), qd;
+    return (M * y).tail<N>();
   }
   static constexpr double kD = 1e-5;
 };
@@ -74,7 +115,7 @@ struct Trajectory {
 template <class Kernel, int K>
 struct NodeRows {
   mbrt::ConstraintRows<K> rows;
-  Eigen::Matrix<double, K, 6> jq;
+  Eigen::Matrix<double, K, 6> jq, jp;
 };
 
 template <int K, class Kernel>
@@ -99,7 +140,7 @@ NodeRows<Kernel, K> node_rows(const Trajectory& x, const mbrt::ModalPoint<N>& c,
   const mbrt::BodyVelocity carried = node.velocity;
   NodeRows<Kernel, K> out;
   out.rows = side == 1 ? kernel(f, {pose, carried}, {ground, still}) : kernel(f, {ground, still}, {pose, carried});
-  out.jq = mbrt::modal_node_rows<N, K>(x.body, c, pose, vel, q, node, side == 1 ? out.rows.J1 : out.rows.J2, out.rows.quad);
+  out.jq = mbrt::modal_node_rows<N, K>(x.body, c, pose, vel, q, node, side == 1 ? out.rows.J1 : out.rows.J2, out.rows.quad, out.jp);
   return out;
 }
 
@@ -115,8 +156,8 @@ void check_against_differences(const Trajectory& x, const mbrt::ModalPoint<N>& c
   Eigen::Matrix<double, 6, 1> p = Eigen::Matrix<double, 6, 1>::Zero(), p_dot = Eigen::Matrix<double, 6, 1>::Zero();
   p.head<N>() = x.p(t);
   p_dot.head<N>() = (x.p(t + d) - x.p(t - d)) / (2 * d);
-  const Eigen::Matrix<double, K, 1> rate = J * u + at.jq * p;
-  const Eigen::Matrix<double, K, 1> acceleration = J * u_dot + at.jq * p_dot + at.rows.quad;
+  const Eigen::Matrix<double, K, 1> rate = J * u + at.jp * p;
+  const Eigen::Matrix<double, K, 1> acceleration = J * u_dot + at.jp * p_dot + at.rows.quad;
   const Eigen::Matrix<double, K, 1> rate_fd = (phi(t + d) - phi(t - d)) / (2 * d);
   const Eigen::Matrix<double, K, 1> acceleration_fd = (phi(t + d) - 2 * phi(t) + phi(t - d)) / (d * d);
   MESSAGE("side " << side << ", " << K << " rows: rate off by " << (rate - rate_fd).norm() << " of " << rate_fd.norm()
@@ -132,6 +173,8 @@ void check_against_differences(const Trajectory& x, const mbrt::ModalPoint<N>& c
 TEST_CASE("a joint's rows at a modal body's node move as finite differences of the node's motion and its section's turn") {
   Trajectory x;
   std::srand(7);
+  x.body.m = 2.5;
+  x.body.J = Eigen::Vector3d(0.2, 0.9, 1.1).asDiagonal();
   x.body.St_T.setRandom();
   x.body.Sr_T.setRandom();
   for (auto& e : x.body.E) e.setRandom();

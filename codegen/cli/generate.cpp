@@ -13,7 +13,6 @@
 #include "emit_can.hpp"
 #include "emit_lcm.hpp"
 #include "initial_conditions.hpp"
-#include "modal_range.hpp"
 
 namespace mbrt::codegen {
 
@@ -106,7 +105,6 @@ Generated generate(const std::string& model_path, const GenerateOptions& options
   if (const std::string w = stable_step_warning(g.model, g.stable); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   if (const std::string w = tree_energy_warning(g.model); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   if (const std::string w = modal_spin_warning(g.model, g.stable); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
-  if (const std::string w = modal_range_warning(g.model, g.stable, g.analysis.modal); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   g.code = emit_cpp(g.model, g.analysis);
   g.code.interface_files = emit_c(g.model, g.analysis);
   if (!g.model.inputs.empty() && !g.model.outputs.empty()) {

@@ -56,10 +56,6 @@ StepReport report_step(const Generated& g, const SimOptions& options) {
   r.per_step = count_step(executable, g.model.solver.step, kCountedSteps);
   read_calibration(r);
   r.stable = g.stable;
-  for (const ModalPlan& p : g.analysis.modal) {
-    r.modal_ranges.push_back(modal_definite_range(p));
-    r.modal_names.push_back(g.model.body_name(p.body));
-  }
   r.partition = g.analysis.partition;
   return r;
 }
@@ -79,16 +75,6 @@ std::string report_json(const StepReport& r) {
                        {"stiffest_frequency", st.stiffest_frequency},
                        {"stiffest_element", st.stiffest_element},
                        {"note", st.note}};
-  Json ranges = Json::array();
-  for (size_t k = 0; k < r.modal_ranges.size(); ++k) {
-    const ModalRange& m = r.modal_ranges[k];
-    ranges.push_back({{"body", r.modal_names[k]},
-                      {"bounded", m.bounded},
-                      {"strain_energy", m.bounded ? Json(m.strain_energy) : Json(nullptr)},
-                      {"node", m.node},
-                      {"node_displacement", m.bounded ? Json(m.node_displacement) : Json(nullptr)},
-                      {"span", m.span}});
-  }
   const Partition& p = r.partition;
   const Json parallel = {{"parts", p.parts},
                          {"requested", p.requested},
@@ -117,7 +103,6 @@ std::string report_json(const StepReport& r) {
                   {"predicted_ns_per_step", predicted},
                   {"calibration", r.calibration},
                   {"stable_step", stable},
-                  {"modal_definite_range", ranges},
                   {"parallel", parallel}};
   return j.dump(4);
 }

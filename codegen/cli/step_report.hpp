@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "flop_count.hpp"
-#include "modal_range.hpp"
 #include "sim_runner.hpp"
 
 namespace mbrt::codegen {
@@ -28,8 +27,6 @@ struct StepReport {
   std::optional<double> ns_per_flop;  // calibration, when timing/results has one
   std::string calibration;            // where it came from, or why there is none
   StableStep stable;
-  std::vector<ModalRange> modal_ranges;  // per modal body (Model::modal)
-  std::vector<std::string> modal_names;
   Partition partition;  // the parallel step's parts (docs/parallel.md)
 };
 

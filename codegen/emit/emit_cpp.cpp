@@ -444,7 +444,10 @@ void Emitter::workspace_types(std::ostringstream& o) const {
       << "    mbrt::" << type("ConstraintRows") << "<" << rows(j) << "> rows;\n";
     if (factor) {
       for (int b : moving_bodies(j)) o << "    " << block_type(body_dofs(), rows(j)) << " mbt_" << body(b).name << ";\n";
-      for (int b : node_bodies(j)) o << "    " << block_type(rows(j), 6) << " jq_" << body(b).name << ";  // the modal momenta's columns\n";
+      for (int b : node_bodies(j)) {
+        o << "    " << block_type(rows(j), 6) << " jq_" << body(b).name << ";  // the modes' columns: their force is jq^T lambda\n"
+          << "    " << block_type(rows(j), 6) << " jp_" << body(b).name << ";  // the modal momenta's: jq M_qq^-1\n";
+      }
       o << "    " << block_type(rows(j), rows(j)) << " L;\n";
       for (int k : a_.pattern.order) {
         const auto& lower = a_.pattern.lower[static_cast<size_t>(k)];
@@ -930,7 +933,7 @@ std::string Emitter::jacobian_product(int j, const std::string& u) const {
   }
   for (int b : node_bodies(j)) {
     const std::string N = "<" + std::to_string(modes_of(b)) + ">()";
-    e += " + " + jq(j, b) + ".leftCols" + N + " * " + u + momenta_at(b) + ".head" + N;
+    e += " + " + jp(j, b) + ".leftCols" + N + " * " + u + momenta_at(b) + ".head" + N;
   }
   return e;
 }
@@ -946,7 +949,7 @@ std::string Emitter::s_block(int i, int j, const std::string& directions) const 
     const auto nj = node_bodies(j);
     const std::string N = "<" + std::to_string(modes_of(b)) + ">()";
     if (std::find(nj.begin(), nj.end(), b) != nj.end()) {
-      e += " + " + jq(i, b) + ".leftCols" + N + " * " + jq(j, b, directions) + ".leftCols" + N + ".transpose()";
+      e += " + " + jp(i, b) + ".leftCols" + N + " * " + jq(j, b, directions) + ".leftCols" + N + ".transpose()";
     }
   }
   return e.empty() ? block_type(rows(i), rows(j)) + "::Zero()" : e;
@@ -965,7 +968,7 @@ void Emitter::mass_products(std::ostringstream& o) const {
     }
     out += "  a" + at(i) + " = mbrt::inverse_mass_times(" + inverse_mass_of(i) + ", l.w" + at(i) + ");\n";
   }
-  if (modal()) part_lines[0] += "  for (int b = 0; b < kModalBodies; ++b) a[kBodies + b] = l.modal[b];  // unit modal masses\n";
+  if (modal()) part_lines[0] += "  for (int b = 0; b < kModalBodies; ++b) a[kBodies + b] = l.modal[b];  // the momenta's rates\n";
   o << (parallel() ? parallel_region(part_lines) : part_lines[0]) << "  return a;\n}\n\n";
 }
 
@@ -1235,7 +1238,7 @@ void Emitter::reactions_function(std::ostringstream& o) const {
       if (on_body2) point = modal_node_place(on, node);
       columns = "(" + columns + " + mbrt::modal_frame_share<" + std::to_string(modes_of(on)) + ", " + std::to_string(rows(j)) +
                 ">(" + body(on).name + "_modal, " + pose(on) + ".R, " + modal_coordinates(plan(on).modal, "modal_q") + ", " +
-                jq(j, on) + "))";
+                jp(j, on) + "))";
     }
     o << "  r[constraint::" << b.name << "] = mbrt::joint_reaction(-(" << columns
       << ".transpose() * " << seg("s.lambda", j) << "), " << pose(on) << ",\n      " << point << ", "

@@ -160,7 +160,8 @@ std::string Emitter::modal_node_block(int j) const {
     const std::string N = std::to_string(modes_of(i));
     columns += "    " + jq(j, i) + " = mbrt::modal_node_rows<" + N + ", " + std::to_string(rows(j)) + ">(" + body(i).name + "_modal, " +
                modal_node_constant(i, nodes[e]) + ", " + pose(i) + ", k.vel" + at(i) + ", " + modal_coordinates(plan(i).modal, "modal_q") +
-               ", node" + std::to_string(e + 1) + ", " + rows_of(j) + "." + (e == 0 ? "J1" : "J2") + ", " + rows_of(j) + ".quad);\n";
+               ", node" + std::to_string(e + 1) + ", " + rows_of(j) + "." + (e == 0 ? "J1" : "J2") + ", " + rows_of(j) + ".quad, " + jp(j, i) +
+               ");\n";
   }
   const std::string target = b.function ? ",\n        " + driver_function_value(b) : "";
   return "  {  // " + b.kernel + " " + label(b.body1, b.node1) + " - " + label(b.body2, b.node2) + "\n" + view.code + "    " + rows_of(j) +

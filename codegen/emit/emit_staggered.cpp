@@ -123,11 +123,12 @@ static void correct_positions(const ConstraintSystem& c, State& s) noexcept {
   subtract_constraint_forces(c, x, 1.0, dq);
 )";
   // A modal body whose node a joint holds: dq holds the momenta's
-  // direction, dq_p = dq_q + S^T dq_frame (include/mbrt/modal_body.hpp,
-  // modal_frame_share), the mass-orthogonal step. Without such joints the
-  // rows do not see q, and leaving it is a Newton step too: moving it by
-  // -S^T dq_frame, which nearly cancels dq_frame where the frame is light
-  // next to its modes, turned test_modal_body's pinned tool unstable.
+  // direction, dq_p = M_qq dq_q + S^T dq_frame (include/mbrt/modal_body.hpp,
+  // modal_frame_share), the mass-orthogonal step: dq_q is modal_rates' of
+  // the step's dq. Without such joints the rows do not see q, and leaving it
+  // is a Newton step too: moving it by -S^T dq_frame, which nearly cancels
+  // dq_frame where the frame is light next to its modes, turned
+  // test_modal_body's pinned tool unstable.
   std::vector<bool> held(m_.bodies.size(), false);
   for (int j = 0; j < blocks(); ++j)
     for (int b : node_bodies(j)) held[static_cast<size_t>(b)] = true;
@@ -135,9 +136,8 @@ static void correct_positions(const ConstraintSystem& c, State& s) noexcept {
     const int i = a_.modal[k].body, n = static_cast<int>(k);
     if (!held[static_cast<size_t>(i)]) continue;
     const std::string b = body(i).name + "_modal", q = modal_coordinates(n, "modal_q"), N = std::to_string(a_.modal[k].modes);
-    o << "  " << q << " += dq" << momenta_at(i) << ".head<" << N << ">() - mbrt::translation_coupling_transpose<" << N << ">(" << b
-      << ", " << q << ") *\n      (mbrt::rotation_matrix(" << state_of(i) << ".p).transpose() * dq" << at(i)
-      << ".head<3>()) - mbrt::turn_coupling_transpose<" << N << ">(" << b << ", " << q << ") * dq" << at(i) << ".tail<3>();\n";
+    o << "  " << q << " += mbrt::modal_rates<" << N << ">(" << b << ", mbrt::rotation_matrix(" << state_of(i) << ".p), dq" << at(i)
+      << ".head<3>(), dq" << at(i) << ".tail<3>(), " << q << ", dq" << momenta_at(i) << ".head<" << N << ">());\n";
   }
   for (size_t i = 0; i < m_.bodies.size(); ++i) {
     const std::string st = state_of(static_cast<int>(i));

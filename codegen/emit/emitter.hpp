@@ -264,9 +264,11 @@ class Emitter {
     for (int b : {block(j).body1, block(j).body2}) if (b != kGround) out.push_back(b);
     return out;
   }
-  // The modal bodies whose node a joint holds: their momenta's
-  // columns jq_BODY (include/mbrt/modal_body.hpp, modal_node_rows), whose
-  // M^-1 jq^T is jq^T (unit modal masses); u[kBodies + modal::BODY] in BodyVectors.
+  // The modal bodies whose node a joint holds: the rows' modal columns
+  // jq_BODY and momentum columns jp_BODY = jq M_qq^-1
+  // (include/mbrt/modal_body.hpp, modal_node_rows): a force lambda moves the
+  // momenta by jq^T lambda, and the rows read jp p; u[kBodies + modal::BODY]
+  // in BodyVectors holds p.
   std::vector<int> node_bodies(int j) const {
     std::vector<int> out;
     if (block(j).node1 >= 0) out.push_back(block(j).body1);
@@ -274,6 +276,7 @@ class Emitter {
     return out;
   }
   std::string jq(int j, int b, const std::string& c = "c") const { return c + "." + jname(j) + ".jq_" + body(b).name; }
+  std::string jp(int j, int b, const std::string& c = "c") const { return c + "." + jname(j) + ".jp_" + body(b).name; }
   std::string momenta_at(int b) const { return "[kBodies + modal::" + body(b).name + "]"; }
   int modes_of(int b) const { return a_.modal[static_cast<size_t>(plan(b).modal)].modes; }
 

@@ -8,6 +8,7 @@
 #include <array>
 
 #include <Eigen/Core>
+#include <mbrt/modal_body.hpp>
 
 #include <string>
 #include <vector>
@@ -73,5 +74,25 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
 
 // Either, as the model gives it (the frame body not set).
 ModalPlan plan_modal(const ModalSource& source);
+
+// The constants the generated step holds for the body (emit_modal.cpp
+// writes the same fields), for checks at generation time and in tests.
+template <int N>
+inline mbrt::ModalBody<N> step_constants(const ModalPlan& p) {
+  mbrt::ModalBody<N> b;
+  b.St_T = p.St_T;
+  b.Sr_T = p.Sr_T;
+  b.stiffness = p.omega.cwiseAbs2();
+  b.damping = p.damping;
+  b.kg_cases = 0;
+  for (size_t k = 0; k < p.kg.size(); ++k) {
+    b.kg[k] = p.kg[k];
+    if (!p.kg[k].isZero(0.0)) b.kg_cases |= 1u << k;
+  }
+  for (size_t k = 0; k < 9; ++k) b.E[k] = p.E[k], b.G[k] = p.G[k];
+  b.J = p.J;
+  b.m = p.m;
+  return b;
+}
 
 }  // namespace mbrt::codegen

@@ -5,27 +5,28 @@
 // Shabana 2005, Dynamics of Multibody Systems, ch. 5).
 //
 // The frame is the undeformed beam's centre of mass and axes (x along the
-// beam). A material point at rho0 moves to rho0 + Psi(rho0) q. The mass
-// matrix in (v body, w body, qdot) is that of the deformed body to second
-// order in q, the bending's shortening taken in its first moment only,
-//   M(q) = [m I, -[c]x, St(q); [c]x, J(q), Sr(q); St(q)^T, Sr(q)^T, I],
-//   c(q) = St q + shortening,  St(q) = dc/dq,  St = int Psi,
-//   Sr(q) = int (rho0 + u) x Psi,
-// J(q) the deformed body's inertia about the frame's origin, and the
-// centrifugal, Coriolis and gyroscopic terms are loads. Nothing in it lags:
-// a light frame (a tool's root section) would otherwise feed its own last
-// accelerations back through q. The step keeps the frame's generalized
-// velocities and the modal momentum p = qdot + St(q)^T R^T v + Sr(q)^T w, which
-// constraint forces on the frame leave alone; the frame then moves with the
-// reduced mass Mf(q) - S S^T (Mf the frame's 6x6 block, S = [St(q); Sr(q)])
-// and the load F - S f_q, where f_q is the modes' generalized force.
+// beam). A material point at rho0 moves to rho0 + Psi q + sigma(q): the
+// modes' linear field, and the bending's shortening, which draws the mass
+// towards the root, taken as a shift sigma of the whole mass that moves its
+// first moment as the shortening does. The mass matrix in (v body, w body,
+// qdot) is that field's Gram matrix, so it stays positive definite whatever
+// the deflection,
+//   M(q) = [m I, -[c]x, St(q); [c]x, J(q), Sr(q); St(q)^T, Sr(q)^T, M_qq(q)],
+// and the centrifugal, Coriolis and gyroscopic terms are loads. Nothing in
+// it lags: a light frame (a tool's root section) would otherwise feed its own
+// last accelerations back through q. The step keeps the frame's generalized
+// velocities and the modal momentum p = M_qq qdot + St(q)^T R^T v +
+// Sr(q)^T w, which constraint forces on the frame leave alone; the frame
+// then moves with the reduced mass Mf(q) - S M_qq^-1 S^T (Mf the frame's
+// 6x6 block, S = [St(q); Sr(q)]) and the load F - S M_qq^-1 f_q, where f_q
+// is the modes' generalized force.
 //
 // Geometric stiffness (Kane, Ryan & Banerjee 1987): the stresses of the
 // frame's rigid motion, from its spin and its acceleration less gravity,
 // with precomputed matrices per load case. Those of the acceleration are the
-// Hessians of the body's first moment: bending shortens the body and shifts
-// its mass back, c(q) = St q + (q^T D_a q / 2)_a. So they enter the mass
-// matrix through c(q) and St(q) = dc/dq, and the frame's acceleration is the
+// Hessians D_a of the body's first moment: bending shortens the body and
+// shifts its mass back, c(q) = St q + (q^T D_a q / 2)_a = St q + m sigma(q).
+// So they enter through the mass matrix, and the frame's acceleration is the
 // step's own, not the last step's (which a welded loop's undamped modes fed
 // on). Those of the spin are loads at the spin of the moment.
 #pragma once
@@ -88,33 +89,10 @@ inline bool has_case(const ModalBody<N>& b, unsigned k) noexcept {
   return (b.kg_cases & (1u << k)) != 0;
 }
 
-}  // namespace modal_detail
-
-// St(q)^T = (dc/dq)^T: column a is St^T's plus D_a q.
+// The linear field's Sr^T = (int (rho0 + Psi q) x Psi)^T: row j is
+// int (rho0 + Psi q) x Psi_j, whose component i is e_iab (q^T E_ab)_j.
 template <int N>
-inline Eigen::Matrix<double, N, 3> translation_coupling_transpose(const ModalBody<N>& b,
-                                                                  const Eigen::Matrix<double, N, 1>& q) noexcept {
-  Eigen::Matrix<double, N, 3> T = b.St_T;
-  for (unsigned a = 0; a < 3; ++a) {
-    if (modal_detail::has_case(b, modal_detail::kAccelerationCase + a)) T.col(a) += b.kg[modal_detail::kAccelerationCase + a] * q;
-  }
-  return T;
-}
-
-// The deformed body's first moment about the frame's origin (body axes),
-// c(q) = St q + (q^T D_a q / 2)_a: the shortening shifts the mass back. c is
-// quadratic in q, so c(q) = (St + St(q)) q / 2, with St(q)^T as formed.
-template <int N>
-inline Vec3 modal_first_moment(const ModalBody<N>& b, const Eigen::Matrix<double, N, 3>& coupling_transpose,
-                               const Eigen::Matrix<double, N, 1>& q) noexcept {
-  return 0.5 * ((b.St_T + coupling_transpose).transpose() * q);
-}
-
-// Sr(q)^T = (int (rho0 + u) x Psi)^T: row j is int (rho0 + u) x Psi_j, whose
-// component i is e_iab int u_a Psi_bj = e_iab (q^T E_ab)_j.
-template <int N>
-inline Eigen::Matrix<double, N, 3> turn_coupling_transpose(const ModalBody<N>& b,
-                                                           const Eigen::Matrix<double, N, 1>& q) noexcept {
+inline Eigen::Matrix<double, N, 3> turn_coupling_transpose(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
   Eigen::Matrix<double, N, 3> T = b.Sr_T;
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3, k = (i + 2) % 3;
@@ -123,20 +101,76 @@ inline Eigen::Matrix<double, N, 3> turn_coupling_transpose(const ModalBody<N>& b
   return T;
 }
 
+// The linear field's inertia about the frame's origin, body axes.
+template <int N>
+inline Mat3 field_inertia(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
+  const Mat3 X = field_product<N>(b.G, q);    // int rho0 u^T
+  const Mat3 W = field_product<N>(b.E, q, q);  // int u u^T
+  return b.J + (2.0 * X.trace() + W.trace()) * Mat3::Identity() - X - X.transpose() - W;
+}
+
+}  // namespace modal_detail
+
+// d sigma / dq at q = x (sigma is quadratic, so this is linear in x): row a
+// is (D_a x)^T / m, D_a the first moment's Hessian (the acceleration cases).
+template <int N>
+inline Eigen::Matrix<double, 3, N> shortening_columns(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& x) noexcept {
+  Eigen::Matrix<double, 3, N> g = Eigen::Matrix<double, 3, N>::Zero();
+  for (unsigned a = 0; a < 3; ++a) {
+    if (modal_detail::has_case(b, modal_detail::kAccelerationCase + a))
+      g.row(a) = (b.kg[modal_detail::kAccelerationCase + a] * x).transpose() / b.m;
+  }
+  return g;
+}
+
+// The mass matrix's q-dependent blocks at q (body axes): those of the linear
+// field rho0 + Psi q shifted by sigma(q) = (q^T D_a q / (2 m))_a, a Gram
+// matrix whatever q. The shift's rate columns are g = d sigma / dq, so
+// St(q) = St + m g, M_qq = I + m g^T g + g^T St + St^T g, and with
+// c_lin = St q, c = c_lin + m sigma:
+//   J(q) = J_lin(q) - m [sigma]x^2 - [sigma]x [c_lin]x - [c_lin]x [sigma]x,
+//   Sr(q) = Sr_lin(q) + [sigma]x St(q) + [c_lin]x g.
+template <int N>
+struct ModalMass {
+  using ModeMatrix = Eigen::Matrix<double, N, N>;
+  Vec3 sigma, c, c_lin;
+  Eigen::Matrix<double, 3, N> g;           // d sigma / dq
+  Mat3 J, J_lin;
+  Eigen::Matrix<double, N, 3> St_T, Sr_T;  // St(q)^T, Sr(q)^T
+  Eigen::Matrix<double, N, 3> Sr_lin_T;
+  Eigen::LLT<ModeMatrix> modal;            // M_qq's factor
+};
+
+template <int N>
+inline ModalMass<N> modal_mass(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
+  ModalMass<N> mm;
+  mm.g = shortening_columns<N>(b, q);
+  mm.sigma = 0.5 * mm.g * q;
+  mm.c_lin = b.St_T.transpose() * q;
+  mm.c = mm.c_lin + b.m * mm.sigma;
+  mm.J_lin = modal_detail::field_inertia<N>(b, q);
+  const Mat3 S = skew(mm.sigma), C = skew(mm.c_lin);
+  mm.J = mm.J_lin - b.m * S * S - S * C - C * S;
+  mm.St_T = b.St_T + b.m * mm.g.transpose();
+  mm.Sr_lin_T = modal_detail::turn_coupling_transpose<N>(b, q);
+  mm.Sr_T = mm.Sr_lin_T - mm.St_T * S - mm.g.transpose() * C;
+  const Eigen::Matrix<double, N, N> St_g = b.St_T * mm.g;
+  mm.modal.compute(Eigen::Matrix<double, N, N>::Identity() + b.m * mm.g.transpose() * mm.g + St_g + St_g.transpose());
+  return mm;
+}
+
 // The modal rates qdot from the momentum p and the frame's velocities.
+template <int N>
+inline Eigen::Matrix<double, N, 1> modal_rates(const ModalMass<N>& mm, const Mat3& R, const Vec3& v, const Vec3& w,
+                                               const Eigen::Matrix<double, N, 1>& p) noexcept {
+  return mm.modal.solve(p - mm.St_T * (R.transpose() * v) - mm.Sr_T * w);
+}
+
 template <int N>
 inline Eigen::Matrix<double, N, 1> modal_rates(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
                                                const Eigen::Matrix<double, N, 1>& q,
                                                const Eigen::Matrix<double, N, 1>& p) noexcept {
-  return p - translation_coupling_transpose<N>(b, q) * (R.transpose() * v) - turn_coupling_transpose<N>(b, q) * w;
-}
-
-// The deformed body's inertia about the frame's origin, body axes.
-template <int N>
-inline Mat3 modal_inertia(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
-  const Mat3 X = modal_detail::field_product<N>(b.G, q);    // int rho0 u^T
-  const Mat3 W = modal_detail::field_product<N>(b.E, q, q);  // int u u^T
-  return b.J + (2.0 * X.trace() + W.trace()) * Mat3::Identity() - X - X.transpose() - W;
+  return modal_rates<N>(modal_mass<N>(b, q), R, v, w, p);
 }
 
 // q's change over a drift of h at the half-step velocities (R the frame's
@@ -151,26 +185,28 @@ inline Eigen::Matrix<double, N, 1> modal_drift(const ModalBody<N>& b, const Mat3
 }
 
 // M^-1 of the frame's 6 velocities in (v world, w body): the R-turned
-// inverse of the reduced mass Mf(q) - S(q) S(q)^T, body axes.
+// inverse of the reduced mass Mf(q) - S(q) M_qq^-1 S(q)^T, body axes.
 struct ModalInverseMass {
   Eigen::Matrix<double, 6, 6> reduced_inverse;
   Mat3 R;
 };
 
-// The frame's reduced mass Mf(q) - S(q) S(q)^T in (v body, w body).
+// The frame's reduced mass Mf(q) - S(q) M_qq(q)^-1 S(q)^T in (v body, w body).
 template <int N>
 inline Eigen::Matrix<double, 6, 6> modal_reduced_mass(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
+  const ModalMass<N> mm = modal_mass<N>(b, q);
   Eigen::Matrix<double, N, 6> S_T;
-  S_T << translation_coupling_transpose<N>(b, q), turn_coupling_transpose<N>(b, q);
-  const Mat3 c = skew(modal_first_moment<N>(b, S_T.template leftCols<3>(), q));
-  Eigen::Matrix<double, 6, 6> reduced = -S_T.transpose() * S_T;
+  S_T << mm.St_T, mm.Sr_T;
+  const Mat3 c = skew(mm.c);
+  Eigen::Matrix<double, 6, 6> reduced = -S_T.transpose() * mm.modal.solve(S_T);
   reduced.template topLeftCorner<3, 3>().diagonal().array() += b.m;
   reduced.template topRightCorner<3, 3>() -= c;
   reduced.template bottomLeftCorner<3, 3>() += c;
-  reduced.template bottomRightCorner<3, 3>() += modal_inertia<N>(b, q);
+  reduced.template bottomRightCorner<3, 3>() += mm.J;
   return reduced;
 }
 
+// M^-1 of the frame's 6 velocities as the step applies it.
 template <int N>
 inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerParameters& p,
                                            const Eigen::Matrix<double, N, 1>& q) noexcept {
@@ -203,40 +239,70 @@ struct ModalLoad {
   double potential;                           // strain energy, gravity of the deformation
 };
 
+namespace modal_detail {
+
+// The frame of the linear field (the frame's origin shifted by sigma), in
+// body axes: its velocity, the body's momentum, and the shift's
+// acceleration where the frame's and the modes' accelerations are zero.
+struct ShiftedFrame {
+  Vec3 velocity, momentum, shift_acceleration;
+};
+
+template <int N>
+inline ShiftedFrame shifted_frame(const ModalBody<N>& b, const ModalMass<N>& mm, const Vec3& vb, const Vec3& w,
+                                  const Eigen::Matrix<double, N, 1>& qd, const Eigen::Matrix<double, 3, N>& g_rate) noexcept {
+  const Vec3 shift_rate = mm.g * qd;
+  ShiftedFrame s;
+  s.velocity = vb + w.cross(mm.sigma) + shift_rate;
+  s.momentum = b.m * s.velocity + w.cross(mm.c_lin) + b.St_T.transpose() * qd;
+  s.shift_acceleration = w.cross(w.cross(mm.sigma)) + 2.0 * w.cross(shift_rate) + g_rate * qd;
+  return s;
+}
+
+}  // namespace modal_detail
+
 // Adds the body's centrifugal, Coriolis, gyroscopic, elastic and damping
 // terms to its frame load (force world, torque body), reduced by the modes'
 // generalized force, and returns the modal momentum's rate. g is gravity;
 // applied is the modes' generalized force of the loads at its nodes
 // (modal_point_force), whose frame parts load already holds.
+//
+// The terms are the linear field's in its own frame, whose origin the
+// shortening shifts by sigma(q) (velocity vs = vb + w x sigma + g qdot),
+// carried back by that shift's transpose: a force there is the same force,
+// its torque about the frame's origin gains sigma x f and its modal force
+// g^T f; the shift's acceleration at zero accelerations, kappa, is an
+// inertia load. dp/dt = dT/dq + Q (q are true coordinates), the linear
+// field's dT/dq plus the shift's, (d vs / dq)^T P with P the momentum.
 template <int N>
 inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w, const Vec3& g,
                                 const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
                                 const Eigen::Matrix<double, N, 1>& applied, Wrench& load) noexcept {
   using Modes = Eigen::Matrix<double, N, 1>;
+  const ModalMass<N> mm = modal_mass<N>(b, q);
   const Vec3 vb = R.transpose() * v, gb = R.transpose() * g;
-  const Eigen::Matrix<double, N, 3> St_T = translation_coupling_transpose<N>(b, q), Sr_T = turn_coupling_transpose<N>(b, q);
-  const Modes qd = p - St_T * vb - Sr_T * w;
-  const Vec3 c = modal_first_moment<N>(b, St_T, q), cd = St_T.transpose() * qd;  // int u, int udot
-  // St(q)'s rate is D_a qdot: it gives c's second derivative less St(q) qddot,
-  // the shortening's (qdot^T D_a qdot)_a, and p's change with vb.
-  const Eigen::Matrix<double, N, 3> St_T_rate = translation_coupling_transpose<N>(b, qd) - b.St_T;
-  const Vec3 cdd_bias = St_T_rate.transpose() * qd;
+  const Modes qd = modal_rates<N>(mm, R, v, w, p);
+  const Eigen::Matrix<double, 3, N> g_rate = shortening_columns<N>(b, qd);
+  const modal_detail::ShiftedFrame s = modal_detail::shifted_frame<N>(b, mm, vb, w, qd, g_rate);
+  const Vec3 &c = mm.c_lin, cd = b.St_T.transpose() * qd, &kappa = s.shift_acceleration;  // int u, int udot
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);  // int rho udot^T
-  // Rigid: the frame's centrifugal, Coriolis and gyroscopic terms, gravity on the deformation.
-  const Vec3 f = -(w.cross(w.cross(c)) + 2.0 * w.cross(cd) + cdd_bias);
-  const Vec3 tau = -(w.cross(modal_inertia<N>(b, q) * w) + 2.0 * (P.trace() * w - P.transpose() * w)) + c.cross(gb);
-  // Modal: centrifugal, the spin's geometric stiffness, elastic, damping, gravity.
+  // The linear field's centrifugal, Coriolis and gyroscopic terms, and the shift's inertia.
+  const Vec3 f = -(w.cross(w.cross(c)) + 2.0 * w.cross(cd)) - b.m * kappa;
+  const Vec3 tau = -(w.cross(mm.J_lin * w) + 2.0 * (P.trace() * w - P.transpose() * w)) - c.cross(kappa);
+  // Modal: the generalized forces (the spin's geometric stiffness, elastic,
+  // damping, gravity on the first moment), centrifugal.
   const std::array<double, 6> spin = {w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.x() * w.z(), w.y() * w.z()};
-  Modes fq = applied + St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd);
+  Modes Q = applied + mm.St_T * gb - b.stiffness.cwiseProduct(q) - b.damping.cwiseProduct(qd);
   for (unsigned k = 0; k < spin.size(); ++k) {
-    if (modal_detail::has_case(b, k)) fq -= spin[k] * (b.kg[k] * q);
+    if (modal_detail::has_case(b, k)) Q -= spin[k] * (b.kg[k] * q);
   }
+  Modes centrifugal = Modes::Zero();
   const double w2 = w.squaredNorm();
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      const double centrifugal = w[i] * w[j] - (i == j ? w2 : 0.0);
+      const double product = w[i] * w[j] - (i == j ? w2 : 0.0);
       const size_t ij = static_cast<size_t>(3 * i + j), ji = static_cast<size_t>(3 * j + i);
-      if (centrifugal != 0.0) fq -= centrifugal * (b.G[ji].transpose() + b.E[ij] * q);
+      if (product != 0.0) centrifugal -= product * (b.G[ji].transpose() + b.E[ij] * q);
     }
   }
   // int Psi^T (w x udot): component i of w x udot is w_j udot_k - w_k udot_j,
@@ -247,25 +313,26 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
     const int j = (i + 1) % 3, k = (i + 2) % 3;
     coriolis += (w[j] * b.E[static_cast<size_t>(3 * i + k)] - w[k] * b.E[static_cast<size_t>(3 * i + j)]) * qd;
   }
-  fq -= 2.0 * coriolis;
-  load.f += R * (f - St_T.transpose() * fq);
-  load.tau += tau - Sr_T.transpose() * fq;
-  return {fq - St_T * w.cross(vb) + coriolis + St_T_rate * vb, 0.5 * q.dot(b.stiffness.cwiseProduct(q)) - gb.dot(c)};
+  const Modes fq = Q + centrifugal - 2.0 * coriolis - b.St_T * kappa + mm.g.transpose() * f;
+  const Modes reduced = mm.modal.solve(fq);
+  load.f += R * (f - mm.St_T.transpose() * reduced);
+  load.tau += tau + mm.sigma.cross(f) + mm.c.cross(gb) - mm.Sr_T.transpose() * reduced;
+  const Modes rate = Q + centrifugal - coriolis + b.St_T * s.velocity.cross(w) + g_rate.transpose() * s.momentum -
+                     mm.g.transpose() * w.cross(s.momentum);
+  return {rate, 0.5 * q.dot(b.stiffness.cwiseProduct(q)) - gb.dot(mm.c)};
 }
 
-// The body's kinetic energy, with the deformed body's inertia terms.
+// The body's kinetic energy: the linear field's in its shifted frame.
 template <int N>
 inline double modal_kinetic_energy(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w,
                                    const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p) noexcept {
-  const Vec3 vb = R.transpose() * v;
-  const Eigen::Matrix<double, N, 3> St_T = translation_coupling_transpose<N>(b, q);
-  const Eigen::Matrix<double, N, 1> qd = p - St_T * vb - turn_coupling_transpose<N>(b, q) * w;
-  const Vec3 c = modal_first_moment<N>(b, St_T, q), cd = St_T.transpose() * qd;
+  const ModalMass<N> mm = modal_mass<N>(b, q);
+  const Eigen::Matrix<double, N, 1> qd = modal_rates<N>(mm, R, v, w, p);
+  const Vec3 vs = R.transpose() * v + w.cross(mm.sigma) + mm.g * qd, cd = b.St_T.transpose() * qd;
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);
-  return 0.5 * b.m * vb.squaredNorm() + vb.dot(w.cross(c) + cd) + 0.5 * w.dot(modal_inertia<N>(b, q) * w) +
+  return 0.5 * b.m * vs.squaredNorm() + vs.dot(w.cross(mm.c_lin) + cd) + 0.5 * w.dot(mm.J_lin * w) +
          w.dot(modal_detail::vee_of(P)) + 0.5 * qd.squaredNorm();
 }
-
 // A node's section turns by the small rotation theta = Theta q: by C(theta),
 // the rotation of Gibbs vector theta / 2 (Cayley's map; to first order the
 // turn by theta), in the frame's axes, whose angular velocity there
@@ -390,18 +457,24 @@ inline Mat3 modal_section_turn(const ModalPoint<N>& c, const Eigen::Matrix<doubl
   return section_turn(c.rotation * q).C;
 }
 
-// Jq S^T: what the momentum column Jq takes from the frame's columns. The
-// step's velocities are the frame's (v world, w body) and the modal momenta
-// p = qdot + S^T (v, w), S^T = [St(q)^T R^T, Sr(q)^T], so a row J_v x_node_dot
-// reads (J - Jq S^T) (v, w) + Jq p.
+// Jp S^T: what the momentum columns Jp = Jq M_qq^-1 take from the frame's
+// columns. The step's velocities are the frame's (v world, w body) and the
+// modal momenta p = M_qq qdot + S^T (v, w), S^T = [St(q)^T R^T, Sr(q)^T], so a
+// row Jq qdot reads -Jp S^T (v, w) + Jp p.
+template <int N, int K>
+inline Eigen::Matrix<double, K, 6> modal_frame_share(const ModalMass<N>& mm, const Mat3& R,
+                                                     const Eigen::Matrix<double, K, 6>& Jp) noexcept {
+  Eigen::Matrix<double, N, 6> S_T;
+  S_T << mm.St_T * R.transpose(), mm.Sr_T;
+  Eigen::Matrix<double, K, 6> share;
+  share = Jp.template leftCols<N>() * S_T;
+  return share;
+}
+
 template <int N, int K>
 inline Eigen::Matrix<double, K, 6> modal_frame_share(const ModalBody<N>& b, const Mat3& R, const Eigen::Matrix<double, N, 1>& q,
-                                                     const Eigen::Matrix<double, K, 6>& Jq) noexcept {
-  Eigen::Matrix<double, N, 6> S_T;
-  S_T << translation_coupling_transpose<N>(b, q) * R.transpose(), turn_coupling_transpose<N>(b, q);
-  Eigen::Matrix<double, K, 6> share;
-  share = Jq.template leftCols<N>() * S_T;
-  return share;
+                                                     const Eigen::Matrix<double, K, 6>& Jp) noexcept {
+  return modal_frame_share<N, K>(modal_mass<N>(b, q), R, Jp);
 }
 
 // Rows of a joint at node c of a modal body, from a kernel's rows J (frame's
@@ -409,19 +482,23 @@ inline Eigen::Matrix<double, K, 6> modal_frame_share(const ModalBody<N>& b, cons
 // the rigid body modal_point_motion describes, `node`. With omega = T Theta qdot
 // (section_turn) and s the deformed place, the kernel's velocity columns
 // read J_v (v + R (Psi qdot + s x omega)) + J_w (w + omega), so the rows gain
-// the momentum column Jq = J_v R (Psi + [s]x T Theta) + J_w T Theta
-// (returned in the first N of 6 columns) and the frame's columns lose
-// Jq S^T (modal_frame_share). The place accelerates at
+// the modal columns Jq = J_v R (Psi + [s]x T Theta) + J_w T Theta (returned
+// in the first N of 6 columns: the modes' generalized force is Jq^T lambda)
+// and, through qdot = M_qq^-1 (p - S^T (v, w)), the momentum columns
+// Jp = Jq M_qq^-1 (momentum_columns), while the frame's columns lose Jp S^T
+// (modal_frame_share). The place accelerates at
 //   v_dot + R (w_dot x s + Psi q_ddot + w x (w x s) + 2 w x Psi q_dot),
 // the axes turn at w_dot + T Theta q_ddot + bias + w x omega; with
-// q_ddot = p_dot - S^T (v_dot, w_dot) + St(q)^T (w x R^T v) - dSt^T(q_dot) R^T v
-// - dSr^T(q_dot) w (dSt^T, dSr^T the parts of St(q)^T, Sr(q)^T linear in q)
-// quad gains what the kernel, which turns both at w + omega, leaves out.
+// q_ddot = M_qq^-1 (p_dot - S^T (v_dot, w_dot) + St(q)^T (w x R^T v) - M_dot y),
+// M_dot y the rate of p at constant velocities y = (R^T v, w, qdot), quad
+// gains what the kernel, which turns both at w + omega, leaves out.
 template <int N, int K>
 inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const ModalPoint<N>& c, const BodyPose& pose,
                                                    const BodyVelocity& vel, const Eigen::Matrix<double, N, 1>& q,
                                                    const ModalPointMotion<N>& node, Eigen::Matrix<double, K, 6>& J,
-                                                   Eigen::Matrix<double, K, 1>& quad) noexcept {
+                                                   Eigen::Matrix<double, K, 1>& quad,
+                                                   Eigen::Matrix<double, K, 6>& momentum_columns) noexcept {
+  const ModalMass<N> mm = modal_mass<N>(b, q);
   const Eigen::Matrix<double, N, 1>& qd = node.rates;
   const Eigen::Matrix<double, K, 3> Jv = J.template leftCols<3>(), Jw = J.template rightCols<3>();
   const Vec3 &s = node.point, u_dot = c.displacement * qd, &w = vel.w;
@@ -429,11 +506,19 @@ inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const 
   const Eigen::Matrix<double, 3, N> turn_columns = turn.T * c.rotation;
   Eigen::Matrix<double, K, 6> Jq = Eigen::Matrix<double, K, 6>::Zero();
   Jq.template leftCols<N>() = Jv * (pose.R * (c.displacement + skew(s) * turn_columns)) + Jw * turn_columns;
-  J -= modal_frame_share<N, K>(b, pose.R, q, Jq);
-  const Vec3 vb = pose.R.transpose() * vel.v;
-  const Eigen::Matrix<double, N, 1> q_ddot_bias = translation_coupling_transpose<N>(b, q) * w.cross(vb) -
-                                                  (translation_coupling_transpose<N>(b, qd) - b.St_T) * vb -
-                                                  (turn_coupling_transpose<N>(b, qd) - b.Sr_T) * w;
+  momentum_columns.setZero();
+  momentum_columns.template leftCols<N>() = mm.modal.solve(Jq.template leftCols<N>().transpose()).transpose();
+  J -= modal_frame_share<N, K>(mm, pose.R, momentum_columns);
+  // M_dot y: the shift's terms (modal_loads' shifted frame) and the linear
+  // field's Sr_lin(q_dot) w.
+  const Vec3 vb = pose.R.transpose() * vel.v, cd = b.St_T.transpose() * qd;
+  const Eigen::Matrix<double, 3, N> g_rate = shortening_columns<N>(b, qd);
+  const modal_detail::ShiftedFrame shifted = modal_detail::shifted_frame<N>(b, mm, vb, w, qd, g_rate);
+  const Vec3 shift_rate = w.cross(mm.g * qd) + g_rate * qd;
+  const Eigen::Matrix<double, N, 1> mass_rate =
+      g_rate.transpose() * shifted.momentum + mm.g.transpose() * (b.m * shift_rate + w.cross(cd)) + b.St_T * shift_rate +
+      (modal_detail::turn_coupling_transpose<N>(b, qd) - b.Sr_T) * w;
+  const Eigen::Matrix<double, N, 1> q_ddot_bias = mm.modal.solve(mm.St_T * w.cross(vb) - mass_rate);
   const Vec3& omega = turn.omega;
   const Vec3 place = 2.0 * w.cross(u_dot - omega.cross(s)) - omega.cross(omega.cross(s)) - turn.bias.cross(s);
   quad += Jw * (w.cross(omega) + turn.bias) + Jv * (pose.R * place) + Jq.template leftCols<N>() * q_ddot_bias;
