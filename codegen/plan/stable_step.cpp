@@ -162,14 +162,14 @@ double kinetic_energy(const Body& b) {
   return t;
 }
 
-}  // namespace
-
 std::string format(double x) {
   std::ostringstream o;
   o.precision(3);
   o << x;
   return o.str();
 }
+
+}  // namespace
 
 StableStep estimate_stable_step(const Model& m, const std::vector<ModalPlan>& modal_plans) {
   StableStep s;

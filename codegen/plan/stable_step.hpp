@@ -29,9 +29,6 @@ struct StableStep {
 // them (a structure's eigenproblem is the generator's largest), else solved here.
 StableStep estimate_stable_step(const Model& model, const std::vector<ModalPlan>& modal_plans = {});
 
-// A figure in a warning: three significant digits.
-std::string format(double x);
-
 // A warning for stderr when the step is above the estimate, else "".
 std::string stable_step_warning(const Model& model, const StableStep& s);
 
