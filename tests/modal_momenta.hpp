@@ -66,30 +66,34 @@ class ModalBeamMass {
   }
 
   // The mass matrix in (v body, w body, qdot) of the model's field: each
-  // point moved by the modes and by the beam's mean shortening, sigma(q) =
-  // -x_hat sum m_k s_k(q) / m (the shift that moves the first moment as the
-  // pointwise shortening s_k does), summed point by point as
-  // sum m_k V_k^T V_k, V_k = [I, -[r_k]x, Psi_k + d sigma / dq], plus the
-  // sections' polar inertia about the beam's axis.
+  // point x (from the centre) moved by the modes, by the beam's mean
+  // shortening sigma(q) = -sum m_k s_k(q) / m and by a stretch beta(q) x
+  // with beta = -sum m_k x_k s_k(q) / sum m_k x_k^2 (along the beam: the
+  // affine field with the pointwise shortening s_k's first and second
+  // moments), summed point by point as sum m_k V_k^T V_k,
+  // V_k = [I, -[r_k]x, Psi_k + d (sigma + beta x_k) / dq], plus the sections'
+  // polar inertia about the beam's axis.
   Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& q) const {
     const int n = plan_.modes;
-    double m = 0;
-    Eigen::RowVectorXd moment_rate = Eigen::RowVectorXd::Zero(n);  // d (sum m_k s_k) / dq
-    double moment = 0;
-    for (Eigen::Index k = 0; k < field_.x.size(); ++k) {
-      m += field_.mass[k];
-      moment += field_.mass[k] * 0.5 * q.dot(shortening_[static_cast<size_t>(k)] * q);
-      moment_rate += field_.mass[k] * (shortening_[static_cast<size_t>(k)] * q).transpose();
-    }
     const double centre = beam_.length / 2;
+    double m = 0, second = 0, moment = 0, turning = 0;
+    Eigen::RowVectorXd moment_rate = Eigen::RowVectorXd::Zero(n), turning_rate = moment_rate;
+    for (Eigen::Index k = 0; k < field_.x.size(); ++k) {
+      const double x = field_.x[k] - centre, dm = field_.mass[k];
+      const Eigen::VectorXd Aq = shortening_[static_cast<size_t>(k)] * q;
+      m += dm, second += dm * x * x;
+      moment += dm * 0.5 * q.dot(Aq), moment_rate += dm * Aq.transpose();
+      turning += dm * x * 0.5 * q.dot(Aq), turning_rate += dm * x * Aq.transpose();
+    }
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 + n, 6 + n);
     for (Eigen::Index k = 0; k < field_.x.size(); ++k) {
-      const mbrt::Vec3 r = mbrt::Vec3(field_.x[k] - centre - moment / m, 0, 0) + field_.displacement[static_cast<size_t>(k)] * q;
+      const double x = field_.x[k] - centre;
+      const mbrt::Vec3 r = mbrt::Vec3(x - moment / m - turning / second * x, 0, 0) + field_.displacement[static_cast<size_t>(k)] * q;
       Eigen::MatrixXd V(3, 6 + n);
       V.leftCols<3>().setIdentity();
       V.middleCols<3>(3) = -mbrt::skew(r);
       V.rightCols(n) = field_.displacement[static_cast<size_t>(k)];
-      V.row(0).tail(n) -= moment_rate / m;
+      V.row(0).tail(n) -= moment_rate / m + turning_rate / second * x;
       M += field_.mass[k] * V.transpose() * V;
     }
     M(3, 3) += beam_.rho_J * beam_.length;

@@ -37,14 +37,21 @@ void Emitter::modal_constants(std::ostringstream& o) const {
       << "  b.damping << " << matrix(p.damping) << ";\n";
     unsigned cases = 0;
     for (size_t k = 0; k < p.kg.size(); ++k) {
-      if (p.kg[k].isZero(0.0)) {
+      const Eigen::MatrixXd kg = step_geometric_stiffness(p, k);
+      if (kg.isZero(0.0)) {
         o << "  b.kg[" << k << "].setZero();\n";
       } else {
-        o << "  b.kg[" << k << "] << " << matrix(p.kg[k]) << ";\n";
+        o << "  b.kg[" << k << "] << " << matrix(kg) << ";\n";
         cases |= 1u << k;
       }
     }
     o << "  b.kg_cases = " << cases << "u;  // the cases above that are not zero\n";
+    if (p.axial_moment > 0.0) {
+      o << "  b.stretch << " << matrix(p.stretch) << ";  // the spin's cases, in the mass\n  b.axial_moment = " << num(p.axial_moment)
+        << ";\n";
+    } else {
+      o << "  b.stretch.setZero();\n";
+    }
     for (int i = 0; i < 9; ++i) {
       o << "  b.E[" << i << "] << " << matrix(p.E[static_cast<size_t>(i)]) << ";\n"
         << "  b.G[" << i << "] << " << matrix(p.G[static_cast<size_t>(i)]) << ";\n";

@@ -232,6 +232,11 @@ ModalPlan plan_modal_body(const BeamProperties& beam, int modes, double damping,
   std::vector<MassPoint> points;
   for (Eigen::Index k = 0; k < f.x.size(); ++k) points.push_back({f.mass[k], {f.x[k] - centre, 0, 0}, f.displacement[static_cast<size_t>(k)]});
   sum_invariants(p, points);
+  // The spin's cases as a stretch beta(q) x along the beam (the mass's
+  // second moment of the shortening, as the acceleration's is its first):
+  // the spin then stiffens through the kinetic energy, which it keeps.
+  for (const MassPoint& point : points) p.axial_moment += point.mass * point.place.x() * point.place.x();
+  p.stretch = -p.kg[kSpinYY] / p.axial_moment;
   return p;
 }
 

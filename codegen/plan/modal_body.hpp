@@ -33,6 +33,11 @@ struct ModalPlan {
   // w_a w_b (xx, yy, zz, xy, xz, yz) about the frame's origin, then the
   // frame's acceleration less gravity along x, y, z (body axes).
   std::array<Eigen::MatrixXd, 9> kg;
+  // A beam's stretch along x (include/mbrt/modal_body.hpp), which carries
+  // its spin cases in the mass instead (step_geometric_stiffness), and
+  // int x^2 dm; zero (and empty) for a structure from a file.
+  Eigen::MatrixXd stretch;
+  double axial_moment = 0.0;
   std::array<Eigen::MatrixXd, 9> E;         // modes x modes
   std::array<Eigen::RowVectorXd, 9> G;      // 1 x modes
   // The nodes: their names (a beam's root, 1, ..., tip), undeformed places
@@ -75,6 +80,12 @@ ModalPlan plan_modal_structure(const ModalStructure& s, int modes, double dampin
 // Either, as the model gives it (the frame body not set).
 ModalPlan plan_modal(const ModalSource& source);
 
+// Load case k of the geometric stiffness as the step applies it: a beam's
+// spin cases are in its stretch.
+inline Eigen::MatrixXd step_geometric_stiffness(const ModalPlan& p, size_t k) {
+  return k < kAccelerationX && p.axial_moment > 0.0 ? Eigen::MatrixXd::Zero(p.modes, p.modes) : p.kg[k];
+}
+
 // The constants the generated step holds for the body (emit_modal.cpp
 // writes the same fields), for checks at generation time and in tests.
 template <int N>
@@ -86,8 +97,14 @@ inline mbrt::ModalBody<N> step_constants(const ModalPlan& p) {
   b.damping = p.damping;
   b.kg_cases = 0;
   for (size_t k = 0; k < p.kg.size(); ++k) {
-    b.kg[k] = p.kg[k];
-    if (!p.kg[k].isZero(0.0)) b.kg_cases |= 1u << k;
+    b.kg[k] = step_geometric_stiffness(p, k);
+    if (!b.kg[k].isZero(0.0)) b.kg_cases |= 1u << k;
+  }
+  b.axial_moment = p.axial_moment;
+  if (p.axial_moment > 0.0) {
+    b.stretch = p.stretch;
+  } else {
+    b.stretch.setZero();
   }
   for (size_t k = 0; k < 9; ++k) b.E[k] = p.E[k], b.G[k] = p.G[k];
   b.J = p.J;

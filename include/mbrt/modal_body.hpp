@@ -54,6 +54,11 @@ struct ModalBody {
   // c(q) = St q + (q^T D_a q / 2)_a.
   std::array<ModeMatrix, 9> kg;
   unsigned kg_cases = 0;
+  // A beam's stretch along x, beta(q) = q^T stretch q / 2 per unit x, which
+  // carries the spin's geometric stiffness in the mass (modal_mass), its
+  // cases then zero; axial_moment = int x^2 dm, zero where there is none.
+  ModeMatrix stretch;
+  double axial_moment = 0.0;
   std::array<ModeMatrix, 9> E;                  // int Psi_a^T Psi_b dm, index 3 a + b
   std::array<Eigen::Matrix<double, 1, N>, 9> G; // int rho0_a Psi_b dm, index 3 a + b
   Mat3 J;                                       // the undeformed body's inertia about its centre, body axes
@@ -101,6 +106,14 @@ inline Eigen::Matrix<double, N, 3> turn_coupling_transpose(const ModalBody<N>& b
   return T;
 }
 
+// int x Psi dm (3 x N): row a is G_xa.
+template <int N>
+inline Eigen::Matrix<double, 3, N> axial_moments(const ModalBody<N>& b) noexcept {
+  Eigen::Matrix<double, 3, N> Gx;
+  for (int a = 0; a < 3; ++a) Gx.row(a) = b.G[static_cast<size_t>(a)];
+  return Gx;
+}
+
 // The linear field's inertia about the frame's origin, body axes.
 template <int N>
 inline Mat3 field_inertia(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
@@ -135,6 +148,9 @@ struct ModalMass {
   using ModeMatrix = Eigen::Matrix<double, N, N>;
   Vec3 sigma, c, c_lin;
   Eigen::Matrix<double, 3, N> g;           // d sigma / dq
+  double beta = 0.0;                       // the stretch along x per unit x
+  Eigen::Matrix<double, N, 1> h;           // d beta / dq
+  Vec3 moment_x;                           // int x (rho0 + Psi q) dm
   Mat3 J, J_lin;
   Eigen::Matrix<double, N, 3> St_T, Sr_T;  // St(q)^T, Sr(q)^T
   Eigen::Matrix<double, N, 3> Sr_lin_T;
@@ -155,7 +171,29 @@ inline ModalMass<N> modal_mass(const ModalBody<N>& b, const Eigen::Matrix<double
   mm.Sr_lin_T = modal_detail::turn_coupling_transpose<N>(b, q);
   mm.Sr_T = mm.Sr_lin_T - mm.St_T * S - mm.g.transpose() * C;
   const Eigen::Matrix<double, N, N> St_g = b.St_T * mm.g;
-  mm.modal.compute(Eigen::Matrix<double, N, N>::Identity() + b.m * mm.g.transpose() * mm.g + St_g + St_g.transpose());
+  Eigen::Matrix<double, N, N> M_qq = Eigen::Matrix<double, N, N>::Identity() + b.m * mm.g.transpose() * mm.g + St_g + St_g.transpose();
+  if (b.axial_moment > 0.0) {
+    // The stretch delta = beta x e_x: with m_x = int x (rho0 + Psi q),
+    // J gains 2 beta m_x,x I - beta (m_x e_x^T + e_x m_x^T) + beta^2 int x^2 (I - e_x e_x^T),
+    // Sr's column j h_j m_x x e_x + beta e_x x int x Psi_j, and M_qq
+    // G_x h^T + h G_x^T + int x^2 h h^T (G_x = int x Psi_x).
+    const Eigen::Matrix<double, 3, N> Gx = modal_detail::axial_moments<N>(b);
+    const Vec3 ex = Vec3::UnitX();
+    mm.h = b.stretch * q;
+    mm.beta = 0.5 * q.dot(mm.h);
+    mm.moment_x = b.axial_moment * ex + Gx * q;
+    const Vec3& mx = mm.moment_x;
+    const double beta = mm.beta, theta = b.axial_moment;
+    mm.J += 2.0 * beta * mx.x() * Mat3::Identity() - beta * (mx * ex.transpose() + ex * mx.transpose()) +
+            beta * beta * theta * (Mat3::Identity() - ex * ex.transpose());
+    mm.Sr_T += mm.h * mx.cross(ex).transpose() + beta * (skew(ex) * Gx).transpose();
+    const Eigen::Matrix<double, N, N> Gh = Gx.row(0).transpose() * mm.h.transpose();
+    M_qq += Gh + Gh.transpose() + theta * mm.h * mm.h.transpose();
+  } else {
+    mm.h.setZero();
+    mm.moment_x.setZero();
+  }
+  mm.modal.compute(M_qq);
   return mm;
 }
 
@@ -259,6 +297,41 @@ inline ShiftedFrame shifted_frame(const ModalBody<N>& b, const ModalMass<N>& mm,
   return s;
 }
 
+// The stretch's share of the kinetic energy, T_d = A . k + int x^2 |k|^2 / 2
+// with k = beta (w x e_x) + beta_dot e_x its velocity per unit x and
+// A = w x m_x + int x Psi qdot, and of the equations it adds (Lagrange's, and
+// Euler's for the frame's turn): the turn's momentum H = dT_d/dw, dT_d/dq,
+// the rate of its momenta at constant velocities (M_dot y), and the biases
+// M_dot y + w x H for the turn, M_dot y - dT_d/dq for the modes.
+template <int N>
+struct StretchTerms {
+  double energy = 0.0;
+  Vec3 bias_w = Vec3::Zero();
+  Eigen::Matrix<double, N, 1> bias_q, energy_gradient, mass_rate_q;
+};
+
+template <int N>
+inline StretchTerms<N> stretch_terms(const ModalBody<N>& b, const ModalMass<N>& mm, const Vec3& w,
+                                     const Eigen::Matrix<double, N, 1>& qd) noexcept {
+  StretchTerms<N> t;
+  t.bias_q.setZero(), t.energy_gradient.setZero(), t.mass_rate_q.setZero();
+  if (!(b.axial_moment > 0.0)) return t;
+  const Eigen::Matrix<double, 3, N> Gx = axial_moments<N>(b);
+  const Vec3 ex = Vec3::UnitX(), w_ex = w.cross(ex);
+  const double theta = b.axial_moment, beta_rate = mm.h.dot(qd);
+  const Eigen::Matrix<double, N, 1> h_rate = b.stretch * qd;
+  const Vec3 k = mm.beta * w_ex + beta_rate * ex, A = w.cross(mm.moment_x) + Gx * qd, Pi = A + theta * k;
+  const Vec3 H = mm.moment_x.cross(k) + mm.beta * ex.cross(Pi);
+  const Vec3 mx_rate = Gx * qd, k_rate = beta_rate * w_ex + qd.dot(h_rate) * ex;
+  const Vec3 Pi_rate = w.cross(mx_rate) + theta * k_rate;
+  t.energy = A.dot(k) + 0.5 * theta * k.squaredNorm();
+  t.energy_gradient = Gx.transpose() * k.cross(w) + mm.h * w_ex.dot(Pi) + h_rate * Pi.x();
+  t.mass_rate_q = Gx.transpose() * k_rate + h_rate * Pi.x() + mm.h * Pi_rate.x();
+  t.bias_q = t.mass_rate_q - t.energy_gradient;
+  t.bias_w = mx_rate.cross(k) + mm.moment_x.cross(k_rate) + beta_rate * ex.cross(Pi) + mm.beta * ex.cross(Pi_rate) + w.cross(H);
+  return t;
+}
+
 }  // namespace modal_detail
 
 // Adds the body's centrifugal, Coriolis, gyroscopic, elastic and damping
@@ -313,12 +386,13 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
     const int j = (i + 1) % 3, k = (i + 2) % 3;
     coriolis += (w[j] * b.E[static_cast<size_t>(3 * i + k)] - w[k] * b.E[static_cast<size_t>(3 * i + j)]) * qd;
   }
-  const Modes fq = Q + centrifugal - 2.0 * coriolis - b.St_T * kappa + mm.g.transpose() * f;
+  const modal_detail::StretchTerms<N> stretch = modal_detail::stretch_terms<N>(b, mm, w, qd);
+  const Modes fq = Q + centrifugal - 2.0 * coriolis - b.St_T * kappa + mm.g.transpose() * f - stretch.bias_q;
   const Modes reduced = mm.modal.solve(fq);
   load.f += R * (f - mm.St_T.transpose() * reduced);
-  load.tau += tau + mm.sigma.cross(f) + mm.c.cross(gb) - mm.Sr_T.transpose() * reduced;
+  load.tau += tau + mm.sigma.cross(f) + mm.c.cross(gb) - stretch.bias_w - mm.Sr_T.transpose() * reduced;
   const Modes rate = Q + centrifugal - coriolis + b.St_T * s.velocity.cross(w) + g_rate.transpose() * s.momentum -
-                     mm.g.transpose() * w.cross(s.momentum);
+                     mm.g.transpose() * w.cross(s.momentum) + stretch.energy_gradient;
   return {rate, 0.5 * q.dot(b.stiffness.cwiseProduct(q)) - gb.dot(mm.c)};
 }
 
@@ -331,7 +405,7 @@ inline double modal_kinetic_energy(const ModalBody<N>& b, const Mat3& R, const V
   const Vec3 vs = R.transpose() * v + w.cross(mm.sigma) + mm.g * qd, cd = b.St_T.transpose() * qd;
   const Mat3 P = modal_detail::field_product<N>(b.G, qd) + modal_detail::field_product<N>(b.E, q, qd);
   return 0.5 * b.m * vs.squaredNorm() + vs.dot(w.cross(mm.c_lin) + cd) + 0.5 * w.dot(mm.J_lin * w) +
-         w.dot(modal_detail::vee_of(P)) + 0.5 * qd.squaredNorm();
+         w.dot(modal_detail::vee_of(P)) + 0.5 * qd.squaredNorm() + modal_detail::stretch_terms<N>(b, mm, w, qd).energy;
 }
 // A node's section turns by the small rotation theta = Theta q: by C(theta),
 // the rotation of Gibbs vector theta / 2 (Cayley's map; to first order the
@@ -517,7 +591,7 @@ inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const 
   const Vec3 shift_rate = w.cross(mm.g * qd) + g_rate * qd;
   const Eigen::Matrix<double, N, 1> mass_rate =
       g_rate.transpose() * shifted.momentum + mm.g.transpose() * (b.m * shift_rate + w.cross(cd)) + b.St_T * shift_rate +
-      (modal_detail::turn_coupling_transpose<N>(b, qd) - b.Sr_T) * w;
+      (modal_detail::turn_coupling_transpose<N>(b, qd) - b.Sr_T) * w + modal_detail::stretch_terms<N>(b, mm, w, qd).mass_rate_q;
   const Eigen::Matrix<double, N, 1> q_ddot_bias = mm.modal.solve(mm.St_T * w.cross(vb) - mass_rate);
   const Vec3& omega = turn.omega;
   const Vec3 place = 2.0 * w.cross(u_dot - omega.cross(s)) - omega.cross(omega.cross(s)) - turn.bias.cross(s);
