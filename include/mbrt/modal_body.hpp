@@ -5,12 +5,13 @@
 // Shabana 2005, Dynamics of Multibody Systems, ch. 5).
 //
 // The frame is the undeformed beam's centre of mass and axes (x along the
-// beam). A material point at rho0 moves to rho0 + Psi q + sigma(q): the
-// modes' linear field, and the bending's shortening, which draws the mass
-// towards the root, taken as a shift sigma of the whole mass that moves its
-// first moment as the shortening does. The mass matrix in (v body, w body,
-// qdot) is that field's Gram matrix, so it stays positive definite whatever
-// the deflection,
+// beam). A material point at rho0 moves to rho0 + Psi q + sigma(q) +
+// beta(q) x e_x: the modes' linear field, and the bending's shortening,
+// which draws the mass towards the root, taken as an affine field with the
+// shortening's first two moments: a shift sigma of the whole mass, and for
+// a beam a stretch beta along it (x from the centre). The mass matrix in
+// (v body, w body, qdot) is that field's Gram matrix, so it stays positive
+// definite whatever the deflection,
 //   M(q) = [m I, -[c]x, St(q); [c]x, J(q), Sr(q); St(q)^T, Sr(q)^T, M_qq(q)],
 // and the centrifugal, Coriolis and gyroscopic terms are loads. Nothing in
 // it lags: a light frame (a tool's root section) would otherwise feed its own
@@ -28,7 +29,10 @@
 // shifts its mass back, c(q) = St q + (q^T D_a q / 2)_a = St q + m sigma(q).
 // So they enter through the mass matrix, and the frame's acceleration is the
 // step's own, not the last step's (which a welded loop's undamped modes fed
-// on). Those of the spin are loads at the spin of the moment.
+// on). A beam's spin cases are the Hessian of the shortening's second
+// moment, int x s dm, which the stretch carries: the spin stiffens the modes
+// through the kinetic energy, which the step keeps. A structure from a file
+// keeps its spin cases as loads at the spin of the moment.
 #pragma once
 
 #include <array>
@@ -137,8 +141,9 @@ inline Eigen::Matrix<double, 3, N> shortening_columns(const ModalBody<N>& b, con
 }
 
 // The mass matrix's q-dependent blocks at q (body axes): those of the linear
-// field rho0 + Psi q shifted by sigma(q) = (q^T D_a q / (2 m))_a, a Gram
-// matrix whatever q. The shift's rate columns are g = d sigma / dq, so
+// field rho0 + Psi q shifted by sigma(q) = (q^T D_a q / (2 m))_a and, where
+// the body has one, stretched by beta(q) x e_x, a Gram matrix whatever q.
+// The shift's rate columns are g = d sigma / dq, so
 // St(q) = St + m g, M_qq = I + m g^T g + g^T St + St^T g, and with
 // c_lin = St q, c = c_lin + m sigma:
 //   J(q) = J_lin(q) - m [sigma]x^2 - [sigma]x [c_lin]x - [c_lin]x [sigma]x,
