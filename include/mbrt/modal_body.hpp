@@ -158,7 +158,6 @@ struct ModalMass {
   Vec3 moment_x;                           // int x (rho0 + Psi q) dm
   Mat3 J, J_lin;
   Eigen::Matrix<double, N, 3> St_T, Sr_T;  // St(q)^T, Sr(q)^T
-  Eigen::Matrix<double, N, 3> Sr_lin_T;
   Eigen::LLT<ModeMatrix> modal;            // M_qq's factor
 };
 
@@ -173,8 +172,7 @@ inline ModalMass<N> modal_mass(const ModalBody<N>& b, const Eigen::Matrix<double
   const Mat3 S = skew(mm.sigma), C = skew(mm.c_lin);
   mm.J = mm.J_lin - b.m * S * S - S * C - C * S;
   mm.St_T = b.St_T + b.m * mm.g.transpose();
-  mm.Sr_lin_T = modal_detail::turn_coupling_transpose<N>(b, q);
-  mm.Sr_T = mm.Sr_lin_T - mm.St_T * S - mm.g.transpose() * C;
+  mm.Sr_T = modal_detail::turn_coupling_transpose<N>(b, q) - mm.St_T * S - mm.g.transpose() * C;
   const Eigen::Matrix<double, N, N> St_g = b.St_T * mm.g;
   Eigen::Matrix<double, N, N> M_qq = Eigen::Matrix<double, N, N>::Identity() + b.m * mm.g.transpose() * mm.g + St_g + St_g.transpose();
   if (b.axial_moment > 0.0) {
