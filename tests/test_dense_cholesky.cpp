@@ -96,6 +96,13 @@ void check_factor_and_solves(Random& rnd) {
     CHECK((x - x_ref).cwiseAbs().maxCoeff() < 1e-12 * std::max(1.0, x_ref.cwiseAbs().maxCoeff()));
     CHECK((A * x - b).cwiseAbs().maxCoeff() < 1e-12 * scale * std::max(1.0, x.cwiseAbs().maxCoeff()));
 
+    // Three right-hand sides at once: A^-1 B.
+    const Matrix<N, 3> B = rnd.matrix<N, 3>();
+    Matrix<N, 3> X3 = B;
+    mbrt::solve_factored<N, 3>(L, X3);
+    const Matrix<N, 3> X3_ref = llt.solve(B);
+    CHECK((X3 - X3_ref).cwiseAbs().maxCoeff() < 1e-12 * std::max(1.0, X3_ref.cwiseAbs().maxCoeff()));
+
     // X L^-T for a block with 2 and with N rows: (L^-1 X^T)^T.
     const Matrix<2, N> X2 = rnd.matrix<2, N>();
     Matrix<2, N> Y2 = X2;

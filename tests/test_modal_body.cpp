@@ -295,9 +295,8 @@ TEST_CASE("the generator refuses what a modal body cannot do, naming the key") {
   CHECK(six.find("keep 5 modes, so that") != std::string::npos);
   CHECK(generator_error("name: flat\n" + std::string(beam).replace(beam.find("EI: 800.0"), 9, "EI: [800.0, 801.0]") + pin) == "");
   CHECK(generator_error("name: node\n" + beam +
-                        "joints:\n  - {name: pin, type: planar, body1: ground, body2: boom@root, point: [0, 0, 0], axis: [0, 0, 1]}\n")
-            .find("a planar joint attaches to modal body 'boom' at its root: name the body; only spherical, distance, "
-                  "revolute, universal, fixed and prismatic joints take one of its nodes") != std::string::npos);
+                        "joints:\n  - {name: pin, type: planar, body1: ground, body2: boom@root, point: [0, 0, 0], axis: [0, 0, 1]}\n") ==
+        "");  // a planar joint takes the root node too
 }
 
 TEST_CASE("the step with a modal body allocates nothing") { CHECK(allocations_in<SpinUp>(20000) == 0); }

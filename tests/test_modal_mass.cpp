@@ -35,7 +35,7 @@ Eigen::MatrixXd library_mass_matrix(const mbrt::ModalBody<N>& b, const Eigen::Ma
   M.block<3, N>(3, 6) = mm.Sr_T.transpose();
   M.block<N, 3>(6, 0) = mm.St_T;
   M.block<N, 3>(6, 3) = mm.Sr_T;
-  M.bottomRightCorner<N, N>() = mm.modal.reconstructedMatrix();
+  M.bottomRightCorner<N, N>() = mm.L * mm.L.transpose();
   return M;
 }
 

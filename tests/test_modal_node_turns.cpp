@@ -1,5 +1,5 @@
 // Joints that turn with a modal body's section (revolute, universal, fixed,
-// prismatic) at its nodes (docs/flexible.md). Three clamped beams of six modes, settled
+// prismatic, cylindrical, screw, planar) at its nodes (docs/flexible.md). Three clamped beams of six modes, settled
 // under loads that the joints pass as forces and torques, against the same
 // six modes written down independently: Euler-Bernoulli's cantilever modes
 // in closed form (Ritz, with the joints' conditions on them), which also
@@ -10,8 +10,10 @@
 // angular momentum, at second order in the step, allocating nothing. A
 // joint spring and a joint_torque input on a revolute joint at a node, and
 // its angle and rate as outputs, against the same closed forms; the same
-// for a prismatic joint sliding along the turned section's oblique axis. A
-// four-bar welded to a modal coupler's node keeps its energy less the
+// for a prismatic joint sliding along the turned section's oblique axis, and
+// a driven cylindrical one. A screw and a planar joint at the nodes of an
+// undamped beam keep its energy and their bodies on the sections' turned
+// axis and plane. A four-bar welded to a modal coupler's node keeps its energy less the
 // crank torque's work.
 #include <doctest/doctest.h>
 
@@ -29,6 +31,11 @@
 #include "modal_momenta.hpp"
 #include "modal_node_spring.hpp"
 #include "modal_node_spring_blajer.hpp"
+#include "modal_node_screw.hpp"
+#include "modal_node_screw_blajer.hpp"
+#include "modal_node_screw_coarse.hpp"
+#include "modal_node_sleeve.hpp"
+#include "modal_node_sleeve_blajer.hpp"
 #include "modal_node_slider.hpp"
 #include "modal_node_slider_blajer.hpp"
 #include "modal_node_turns.hpp"
@@ -340,6 +347,148 @@ TEST_CASE("a joint spring and a joint input on a prismatic joint at a modal node
 
 namespace {
 
+mbrt::Mat3 rotation_of(const double* pose) { return Eigen::Quaterniond(pose[3], pose[4], pose[5], pose[6]).toRotationMatrix(); }
+Vec3 place_of(const double* pose) { return {pose[0], pose[1], pose[2]}; }
+
+// tests/models/modal_node_sleeve.yaml for 15 s with the input at `push`:
+// the settled tip, its turn and the driver's force on the sleeve along the
+// turned axis; at the end, the sleeve's offset from the tip node and the
+// angle of the axis, pi/4 + the tip's turn.
+struct DrivenSleeve {
+  double tip, slope, stroke_force;
+  Vec3 offset;
+  double axis;
+};
+
+template <class State, class Outputs, class Reactions, class Step, class Out, class React>
+DrivenSleeve settle_sleeve(State s, double h, double push, Step step, Out outputs, React reactions) {
+  namespace sleeve = mbrt::models::modal_node_sleeve;
+  s.inputs[sleeve::input::push] = push;
+  Outputs y{};
+  Reactions r;
+  std::vector<double> tip, slope, force;
+  const int steps = static_cast<int>(std::lround(15.0 / h));
+  for (int i = 0; i < steps; ++i) {
+    REQUIRE(step(s) == mbrt::StepStatus::ok);
+    outputs(s, y);
+    reactions(s, r);
+    const double turn = turn_z(&y[sleeve::output::tip]), axis = std::numbers::pi / 4 + turn;
+    tip.push_back(y[sleeve::output::tip + 1]), slope.push_back(turn);
+    force.push_back(r[sleeve::constraint::stroke].force.dot(Vec3(std::cos(axis), std::sin(axis), 0)));
+  }
+  const Vec3 offset = place_of(&y[sleeve::output::sleeve_pose]) - place_of(&y[sleeve::output::tip]);
+  return {settled(tip, h), settled(slope, h), settled(force, h), offset, std::numbers::pi / 4 + slope.back()};
+}
+
+#define SETTLE_SLEEVE(NS, PUSH)                                                                                                  \
+  settle_sleeve<mbrt::models::NS::State, mbrt::models::NS::Outputs, mbrt::models::NS::Reactions>(                               \
+      mbrt::models::NS::initial_state(), mbrt::models::NS::kStep, PUSH, [](auto& s) { return mbrt::models::NS::step(s); },     \
+      [](const auto& s, auto& y) { mbrt::models::NS::outputs(s, y); }, [](const auto& s, auto& r) { mbrt::models::NS::reactions(s, r); })
+
+}  // namespace
+
+TEST_CASE("a driver and a joint input on a cylindrical joint at a modal node slide the sleeve along the node's turned section") {
+  const double EI = 100.0, rho_A = 1.0, L = 1.0, F = 1.0, d = 0.1;
+  const CantileverModes modes(6, EI, rho_A, L);
+  for (const double push : {0.0, 0.2}) {
+    for (const DrivenSleeve& r : {SETTLE_SLEEVE(modal_node_sleeve, push), SETTLE_SLEEVE(modal_node_sleeve_blajer, push)}) {
+      // The driver holds the sleeve d along the axis at pi/4 to the beam,
+      // turned with the section; the tip carries F and the moment of that
+      // offset, the driver F's share along the axis and the input.
+      const double axis = std::numbers::pi / 4 + r.slope;
+      const Eigen::VectorXd c = modes.loaded(L, F, F * d * std::cos(axis));
+      MESSAGE("input " << push << " N: tip " << r.tip << " m, turned " << r.slope << " rad (six modes " << modes.at(c, L) << ", "
+                       << modes.at(c, L, 1) << "), driver's force along the axis " << r.stroke_force
+                       << " N (-(F sin(pi/4 + turn) + input) " << -(F * std::sin(axis) + push) << "); at the end the sleeve "
+                       << r.offset.norm() << " m from the tip at " << std::atan2(r.offset.y(), r.offset.x()) << " rad (pi/4 + turn "
+                       << r.axis << ")");
+      CHECK(r.tip == doctest::Approx(modes.at(c, L)).epsilon(0.002).scale(0));
+      CHECK(r.slope == doctest::Approx(modes.at(c, L, 1)).epsilon(0.002).scale(0));
+      CHECK(r.stroke_force == doctest::Approx(-(F * std::sin(axis) + push)).epsilon(5e-4).scale(0));
+      CHECK(r.offset.norm() == doctest::Approx(d).epsilon(1e-9).scale(0));
+      CHECK(std::atan2(r.offset.y(), r.offset.x()) == doctest::Approx(r.axis).epsilon(1e-9).scale(0));
+      CHECK(std::abs(r.offset.z()) < 1e-12);
+    }
+  }
+}
+
+namespace {
+
+// tests/models/modal_node_screw.yaml for 3 s: the largest drift of the
+// energy and the largest kinetic energy; the nut's largest distance from the
+// tip section's turned axis, turn off it, and gap between its slide along it
+// and the lead's share of its turn about it (the turn followed through
+// whole turns), and its largest slide; the plate's largest distance from the
+// middle section's turned plane, turn off its normal, and largest slide.
+struct ScrewAndPlate {
+  double energy_drift = 0, largest_kinetic = 0;
+  double off_axis = 0, off_turn = 0, thread_gap = 0, slide = 0;
+  double off_plane = 0, plate_tilt = 0, plate_slide = 0;
+};
+
+template <class State, class Outputs, class Step, class Out, class EnergyOf>
+ScrewAndPlate screw_and_plate(State s, double h, Step step, Out outputs, EnergyOf energy) {
+  namespace screw = mbrt::models::modal_node_screw;
+  const double lead = 0.1, e0 = energy(s).total();
+  ScrewAndPlate r;
+  Outputs y{};
+  double turn = 0;  // the nut's turn about the axis, followed through whole turns
+  const int steps = static_cast<int>(std::lround(3.0 / h));
+  for (int i = 0; i < steps; ++i) {
+    REQUIRE(step(s) == mbrt::StepStatus::ok);
+    const mbrt::Energy e = energy(s);
+    r.energy_drift = std::max(r.energy_drift, std::abs(e.total() - e0));
+    r.largest_kinetic = std::max(r.largest_kinetic, e.kinetic);
+    outputs(s, y);
+    const mbrt::Mat3 tip = rotation_of(&y[screw::output::tip]), middle = rotation_of(&y[screw::output::middle]);
+    const Vec3 p = tip.transpose() * (place_of(&y[screw::output::nut_pose]) - place_of(&y[screw::output::tip]));
+    const mbrt::Mat3 Q = tip.transpose() * rotation_of(&y[screw::output::nut_pose]);
+    const double step_turn = std::atan2(Q(2, 1), Q(1, 1)) - std::remainder(turn, 2 * std::numbers::pi);
+    turn += std::remainder(step_turn, 2 * std::numbers::pi);
+    r.off_axis = std::max(r.off_axis, p.tail<2>().norm());
+    r.off_turn = std::max({r.off_turn, std::abs(Q(1, 0)), std::abs(Q(2, 0)), std::abs(Q(0, 1)), std::abs(Q(0, 2))});
+    r.thread_gap = std::max(r.thread_gap, std::abs(p.x() - lead / (2 * std::numbers::pi) * turn));
+    r.slide = std::max(r.slide, std::abs(p.x()));
+    const Vec3 u = middle.transpose() * (place_of(&y[screw::output::plate_pose]) - place_of(&y[screw::output::middle]));
+    const mbrt::Mat3 P = middle.transpose() * rotation_of(&y[screw::output::plate_pose]);
+    r.off_plane = std::max(r.off_plane, std::abs(u.y()));
+    r.plate_tilt = std::max({r.plate_tilt, std::abs(P(0, 1)), std::abs(P(2, 1)), std::abs(P(1, 0)), std::abs(P(1, 2))});
+    r.plate_slide = std::max(r.plate_slide, std::hypot(u.x(), u.z()));
+  }
+  return r;
+}
+
+#define SCREW_AND_PLATE(NS)                                                                                                 \
+  screw_and_plate<mbrt::models::NS::State, mbrt::models::NS::Outputs>(                                                      \
+      mbrt::models::NS::initial_state(), mbrt::models::NS::kStep, [](auto& s) { return mbrt::models::NS::step(s); },       \
+      [](const auto& s, auto& y) { mbrt::models::NS::outputs(s, y); }, [](const auto& s) { return mbrt::models::NS::energy(s); })
+
+}  // namespace
+
+TEST_CASE("a screw and a planar joint at an undamped modal beam's nodes keep its energy and their bodies on the turned sections") {
+  const ScrewAndPlate pcst = SCREW_AND_PLATE(modal_node_screw), blajer = SCREW_AND_PLATE(modal_node_screw_blajer);
+  const ScrewAndPlate coarse = SCREW_AND_PLATE(modal_node_screw_coarse);
+  for (const ScrewAndPlate& r : {pcst, blajer, coarse}) {
+    MESSAGE("3 s: energy drift " << r.energy_drift << " J (largest kinetic " << r.largest_kinetic << " J); nut off the turned axis "
+                                 << r.off_axis << " m, turned off it " << r.off_turn << ", slide less lead x turn " << r.thread_gap
+                                 << " m of " << r.slide << " m; plate off the turned plane " << r.off_plane << " m, tilted "
+                                 << r.plate_tilt << ", slid " << r.plate_slide << " m");
+    // The joints do move their bodies: the sections turn, the nut screws out, the plate slides.
+    CHECK(r.slide > 0.02);
+    CHECK(r.plate_slide > 0.5);
+    CHECK(r.off_axis < 1e-9);
+    CHECK(r.off_turn < 1e-9);
+    CHECK(r.thread_gap < 1e-9);
+    CHECK(r.off_plane < 1e-9);
+    CHECK(r.plate_tilt < 1e-9);
+    CHECK(r.energy_drift < 1e-3 * r.largest_kinetic);
+  }
+  // Second order: half the step, a quarter of the drift (within a third).
+  CHECK(pcst.energy_drift < coarse.energy_drift / 3);
+}
+
+namespace {
+
 struct StaticLoads {
   double middle_a, frequency_a, tip_b, slope_b, frequency_b;
 };
@@ -484,7 +633,7 @@ TEST_CASE("the step holding modal nodes by joints that turn allocates nothing") 
   CHECK(allocations_in<Blajer>(2000) == 0);
 }
 
-TEST_CASE("the generator turns revolute, universal, fixed and prismatic joints with a modal node's section, and refuses what it cannot") {
+TEST_CASE("the generator turns joints with a modal node's section, and refuses what it cannot") {
   const std::string beam =
       "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 4, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
       "rho_A: 2.0, rho_J: 0.01}\n  - {name: arm, mass: 1.0, inertia: [0.01, 0.01, 0.01], position: [2.5, 0, 0]}\n";
@@ -508,18 +657,22 @@ TEST_CASE("the generator turns revolute, universal, fixed and prismatic joints w
   CHECK(with(hinge, "inputs:\n  - {name: motor, type: joint_torque, joint: hinge, min: -1, max: 1, safe: 0}\n") == "");
   CHECK(with("  - {name: hinge, type: revolute, body1: boom@tip, body2: arm, axis: [0, 0, 1], friction: {torque: 0.1}}\n")
             .find("joint 'hinge' holds a modal body's node: friction there is not modelled") != std::string::npos);
-  // A prismatic joint there takes a spring, an input and outputs, not a
-  // driver or friction; a cylindrical one is refused.
+  // A prismatic joint there takes a spring, an input, outputs and a driver,
+  // not friction; cylindrical, screw and planar joints take a node, a
+  // velocity_toward joint does not.
   const std::string slide = "  - {name: slide, type: prismatic, body1: boom@tip, body2: arm, axis: [0, 1, 0]}\n";
   CHECK(with(slide, "forces:\n  - {type: joint_spring, joint: slide, stiffness: 10.0}\n") == "");
   CHECK(with(slide, "inputs:\n  - {name: push, type: joint_force, joint: slide, min: -1, max: 1, safe: 0}\n") == "");
   CHECK(with(slide, "outputs:\n  - {name: at, type: joint_position, joint: slide}\n") == "");
-  CHECK(with(slide, "drivers:\n  - {name: move, type: joint_distance, joint: slide, function: {polynomial: [0, 1]}}\n")
-            .find("prismatic joint 'slide' holds a modal body's node: a driver there is not modelled") != std::string::npos);
+  CHECK(with(slide, "drivers:\n  - {name: move, type: joint_distance, joint: slide, function: {polynomial: [0, 1]}}\n") == "");
   CHECK(with("  - {name: slide, type: prismatic, body1: boom@tip, body2: arm, axis: [0, 1, 0], friction: {force: 0.1}}\n")
             .find("joint 'slide' holds a modal body's node: friction there is not modelled") != std::string::npos);
-  CHECK(with("  - {name: slide, type: cylindrical, body1: boom@tip, body2: arm, axis: [0, 1, 0]}\n")
-            .find("a cylindrical joint attaches to modal body 'boom' at its root: name the body") != std::string::npos);
+  CHECK(with("  - {name: slide, type: cylindrical, body1: boom@tip, body2: arm, axis: [0, 1, 0]}\n") == "");
+  CHECK(with("  - {name: thread, type: screw, body1: boom@tip, body2: arm, axis: [1, 0, 0], lead: 0.1}\n") == "");
+  CHECK(with("  - {name: table, type: planar, body1: boom@tip, body2: arm, axis: [0, 1, 0]}\n") == "");
+  CHECK(with("  - {name: aim, type: velocity_toward, body1: boom@tip, body2: arm, point1: [2, 0, 0], point2: [3, 0, 0], "
+             "plane_normal: [0, 0, 1]}\n")
+            .find("a velocity_toward joint attaches to modal body 'boom' at its root: name the body") != std::string::npos);
 }
 
 TEST_CASE("the generator takes a modal beam's static loads and says what is wrong with them") {

@@ -484,8 +484,7 @@ int read_body_ref(const Value& v, const Model& model, int* node = nullptr) {
       const bool beam = !modal_source(model, body)->structure;
       fail(v, "'" + name + "' is a modal body: name it, and this attaches " +
                   (beam ? "at its root" : "at one of its clamped nodes' places") +
-                  " (only spherical, distance, revolute, universal and fixed joints, forces, torques, spring_dampers, motor_torque "
-                  "inputs and outputs take " + name + (beam ? "@tip or " + name + "@K)" : "@NODE)"));
+                  " (joints, forces, torques, spring_dampers, motor_torque inputs and outputs take " + name + (beam ? "@tip or " + name + "@K)" : "@NODE)"));
     }
     if (k >= 0) {
       *node = k;
@@ -985,19 +984,16 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
                     model.body_name(j.body1) + "')");
   }
   // A joint holds a modal body's node where it deforms to, and one with axes
-  // turns them with its section's small rotations (a prismatic one slides
-  // along the section's turned axis).
+  // turns them with its section's small rotations (a prismatic, cylindrical,
+  // screw or planar one slides along or across the section's turned axis).
   const bool point_joint = j.type == JointType::spherical || j.type == JointType::distance;
-  const bool at_nodes = point_joint || j.type == JointType::revolute || j.type == JointType::universal || j.type == JointType::fixed ||
-                        j.type == JointType::prismatic;
   for (const auto& [value, body, node] : {std::tuple{body1, j.body1, j.node1}, std::tuple{body2, j.body2, j.node2}}) {
     if (node < 0) continue;
-    if (!at_nodes) {
+    if (j.type == JointType::velocity_toward) {
       const bool beam = !modal_source(model, body)->structure;
       fail(value, "a " + type.node.Scalar() + " joint attaches to modal body '" + model.body_name(body) + "' " +
                       (beam ? "at its root" : "at one of its clamped nodes' places") +
-                      ": name the body; only spherical, distance, revolute, universal, fixed and prismatic joints take one of its "
-                      "nodes");
+                      ": name the body; a velocity_toward joint does not take one of its nodes");
     }
     if (!point_joint) check_node_turns(value, model, body, node, "a " + type.node.Scalar() + " joint's torque");
   }
@@ -1019,7 +1015,7 @@ Joint parse_joint(const Value& item, const Model& model, std::map<std::string, i
       }
       break;
     case JointType::screw: {
-      j.point = read_vector3(s.get("point"));
+      j.point = joint_point(s, model, j, body2);
       j.axis = read_axis(s.get("axis"));
       const Value lead = s.get("lead");
       j.lead = read_number(lead);
@@ -1322,11 +1318,6 @@ Driver parse_driver(const Value& item, const Model& model, std::map<std::string,
                                               : std::vector{JointType::prismatic, JointType::cylindrical};
     const Value joint = s.get("joint");
     d.joint = read_joint_ref(joint, model, joints, "a " + type.node.Scalar() + " driver");
-    const Joint& j = model.joints[static_cast<size_t>(d.joint)];
-    if (j.type == JointType::prismatic && (j.node1 >= 0 || j.node2 >= 0)) {
-      fail(joint, "prismatic joint '" + j.name + "' holds a modal body's node: a driver there is not modelled; drive a joint "
-                  "at the body's root, or push it with a joint_force input");
-    }
   }
   d.function = parse_function(s.get("function"));
   return d;

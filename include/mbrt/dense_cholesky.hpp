@@ -59,4 +59,15 @@ inline void solve_lower_transposed(const Eigen::Matrix<double, N, N>& L, Eigen::
   }
 }
 
+// X := (L L^T)^-1 X, column by column.
+template <int N, int K>
+inline void solve_factored(const Eigen::Matrix<double, N, N>& L, Eigen::Matrix<double, N, K>& X) noexcept {
+  for (int j = 0; j < K; ++j) {
+    Eigen::Matrix<double, N, 1> y = X.col(j);
+    solve_lower(L, y);
+    solve_lower_transposed(L, y);
+    X.col(j) = y;
+  }
+}
+
 }  // namespace mbrt

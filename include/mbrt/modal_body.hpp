@@ -38,6 +38,7 @@
 #include <array>
 
 #include "mbrt/body_state.hpp"
+#include "mbrt/dense_cholesky.hpp"
 #include "mbrt/forces.hpp"
 #include "mbrt/joints.hpp"
 #include "mbrt/rotation.hpp"
@@ -158,8 +159,15 @@ struct ModalMass {
   Vec3 moment_x;                           // int x (rho0 + Psi q) dm
   Mat3 J, J_lin;
   Eigen::Matrix<double, N, 3> St_T, Sr_T;  // St(q)^T, Sr(q)^T
-  Eigen::LLT<ModeMatrix> modal;            // M_qq's factor
+  ModeMatrix L;                            // M_qq = L L^T (lower triangle)
 };
+
+// M_qq^-1 X.
+template <int N, int K>
+inline Eigen::Matrix<double, N, K> modal_solve(const ModalMass<N>& mm, Eigen::Matrix<double, N, K> X) noexcept {
+  solve_factored<N, K>(mm.L, X);
+  return X;
+}
 
 template <int N>
 inline ModalMass<N> modal_mass(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
@@ -196,7 +204,8 @@ inline ModalMass<N> modal_mass(const ModalBody<N>& b, const Eigen::Matrix<double
     mm.h.setZero();
     mm.moment_x.setZero();
   }
-  mm.modal.compute(M_qq);
+  cholesky_in_place<N>(M_qq);  // a Gram matrix: positive definite
+  mm.L = M_qq.template triangularView<Eigen::Lower>();
   return mm;
 }
 
@@ -204,7 +213,7 @@ inline ModalMass<N> modal_mass(const ModalBody<N>& b, const Eigen::Matrix<double
 template <int N>
 inline Eigen::Matrix<double, N, 1> modal_rates(const ModalMass<N>& mm, const Mat3& R, const Vec3& v, const Vec3& w,
                                                const Eigen::Matrix<double, N, 1>& p) noexcept {
-  return mm.modal.solve(p - mm.St_T * (R.transpose() * v) - mm.Sr_T * w);
+  return modal_solve<N, 1>(mm, p - mm.St_T * (R.transpose() * v) - mm.Sr_T * w);
 }
 
 template <int N>
@@ -239,7 +248,13 @@ inline Eigen::Matrix<double, 6, 6> modal_reduced_mass(const ModalBody<N>& b, con
   Eigen::Matrix<double, N, 6> S_T;
   S_T << mm.St_T, mm.Sr_T;
   const Mat3 c = skew(mm.c);
-  Eigen::Matrix<double, 6, 6> reduced = -S_T.transpose() * mm.modal.solve(S_T);
+  // S M_qq^-1 S^T = W^T W with W = L^-1 S^T.
+  for (int j = 0; j < 6; ++j) {
+    Eigen::Matrix<double, N, 1> column = S_T.col(j);
+    solve_lower<N>(mm.L, column);
+    S_T.col(j) = column;
+  }
+  Eigen::Matrix<double, 6, 6> reduced = -S_T.transpose() * S_T;
   reduced.template topLeftCorner<3, 3>().diagonal().array() += b.m;
   reduced.template topRightCorner<3, 3>() -= c;
   reduced.template bottomLeftCorner<3, 3>() += c;
@@ -251,7 +266,10 @@ inline Eigen::Matrix<double, 6, 6> modal_reduced_mass(const ModalBody<N>& b, con
 template <int N>
 inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerParameters& p,
                                            const Eigen::Matrix<double, N, 1>& q) noexcept {
-  return {modal_reduced_mass<N>(b, q).llt().solve(Eigen::Matrix<double, 6, 6>::Identity()), rotation_matrix(p)};
+  Eigen::Matrix<double, 6, 6> L = modal_reduced_mass<N>(b, q), inverse = Eigen::Matrix<double, 6, 6>::Identity();
+  cholesky_in_place<6>(L);  // a Gram matrix's Schur complement: positive definite
+  solve_factored<6, 6>(L, inverse);
+  return {inverse, rotation_matrix(p)};
 }
 
 inline Vec6 inverse_mass_times(const ModalInverseMass& b, const Wrench& w) noexcept {
@@ -391,7 +409,7 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
   }
   const modal_detail::StretchTerms<N> stretch = modal_detail::stretch_terms<N>(b, mm, w, qd);
   const Modes fq = Q + centrifugal - 2.0 * coriolis - b.St_T * kappa + mm.g.transpose() * f - stretch.bias_q;
-  const Modes reduced = mm.modal.solve(fq);
+  const Modes reduced = modal_solve<N, 1>(mm, fq);
   load.f += R * (f - mm.St_T.transpose() * reduced);
   load.tau += tau + mm.sigma.cross(f) + mm.c.cross(gb) - stretch.bias_w - mm.Sr_T.transpose() * reduced;
   const Modes rate = Q + centrifugal - coriolis + b.St_T * s.velocity.cross(w) + g_rate.transpose() * s.momentum -
@@ -584,7 +602,7 @@ inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const 
   Eigen::Matrix<double, K, 6> Jq = Eigen::Matrix<double, K, 6>::Zero();
   Jq.template leftCols<N>() = Jv * (pose.R * (c.displacement + skew(s) * turn_columns)) + Jw * turn_columns;
   momentum_columns.setZero();
-  momentum_columns.template leftCols<N>() = mm.modal.solve(Jq.template leftCols<N>().transpose()).transpose();
+  momentum_columns.template leftCols<N>() = modal_solve<N, K>(mm, Jq.template leftCols<N>().transpose()).transpose();
   J -= modal_frame_share<N, K>(mm, pose.R, momentum_columns);
   // M_dot y: the shift's terms (modal_loads' shifted frame) and the linear
   // field's Sr_lin(q_dot) w.
@@ -595,7 +613,7 @@ inline Eigen::Matrix<double, K, 6> modal_node_rows(const ModalBody<N>& b, const 
   const Eigen::Matrix<double, N, 1> mass_rate =
       g_rate.transpose() * shifted.momentum + mm.g.transpose() * (b.m * shift_rate + w.cross(cd)) + b.St_T * shift_rate +
       (modal_detail::turn_coupling_transpose<N>(b, qd) - b.Sr_T) * w + modal_detail::stretch_terms<N>(b, mm, w, qd).mass_rate_q;
-  const Eigen::Matrix<double, N, 1> q_ddot_bias = mm.modal.solve(mm.St_T * w.cross(vb) - mass_rate);
+  const Eigen::Matrix<double, N, 1> q_ddot_bias = modal_solve<N, 1>(mm, mm.St_T * w.cross(vb) - mass_rate);
   const Vec3& omega = turn.omega;
   const Vec3 place = 2.0 * w.cross(u_dot - omega.cross(s)) - omega.cross(omega.cross(s)) - turn.bias.cross(s);
   quad += Jw * (w.cross(omega) + turn.bias) + Jv * (pose.R * place) + Jq.template leftCols<N>() * q_ddot_bias;
