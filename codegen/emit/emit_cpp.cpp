@@ -24,6 +24,7 @@ std::string Emitter::header() const {
     << "#pragma once\n\n#include <array>\n#include <cstddef>\n\n#include <mbrt/model_api.hpp>\n"
     << (scheme_kind() == Scheme::staggered_nps ? "#include <mbrt/natural_partitioning.hpp>\n" : "")
     << (tree_scheme() ? "#include <mbrt/sin_cos.hpp>\n" : "")
+    << (modal() ? "#include <mbrt/modal_body.hpp>  // the Loads' M^-1 of the modal frames\n" : "")
     << "#include <mbrt/runtime.hpp>\n\n"
     << "namespace mbrt::models::" << m_.name << " {\n\n"
     << "inline constexpr const char* kName = \"" << m_.name << "\";\n"
@@ -431,7 +432,9 @@ void Emitter::workspace_types(std::ostringstream& o) const {
     << "struct Loads {\n"
     << "  std::array<mbrt::" << type("Wrench") << ", kBodies> w;\n"
     << "  double elastic_energy;\n"
-    << (modal() ? "  std::array<mbrt::Vec6, kModalBodies> modal;  // the modal momenta's rates\n" : "")
+    << (modal() ? "  std::array<mbrt::Vec6, kModalBodies> modal;  // the modal momenta's rates\n"
+                  "  std::array<mbrt::ModalInverseMass, kModalBodies> modal_inverse;  // the frames' M^-1 where the loads were taken\n"
+                : "")
     << "};\n\n"
     << (scheme_kind() == Scheme::staggered_nps ? "// Constraint rows.\n"
                                      : "// Constraint rows, M^-1 B^T blocks and the block Cholesky factor of\n"
@@ -966,8 +969,10 @@ void Emitter::mass_products(std::ostringstream& o) const {
       out += "  a" + at(i) + ".setZero();  // " + body(i).name + ": no applied load\n";
       continue;
     }
-    out += "  a" + at(i) + " = mbrt::inverse_mass_times(" + inverse_mass_of(i) + ", l.w" + at(i) + ");\n";
+    const std::string inverse = plan(i).modal < 0 ? inverse_mass_of(i) : "l.modal_inverse" + modal_slot(plan(i).modal);
+    out += "  a" + at(i) + " = mbrt::inverse_mass_times(" + inverse + ", l.w" + at(i) + ");\n";
   }
+  if (modal() && !a_.tunable_masses) part_lines[0] += "  (void)s;  // the modal bodies' M^-1 comes with the loads\n";
   if (modal()) part_lines[0] += "  for (int b = 0; b < kModalBodies; ++b) a[kBodies + b] = l.modal[b];  // the momenta's rates\n";
   o << (parallel() ? parallel_region(part_lines) : part_lines[0]) << "  return a;\n}\n\n";
 }
@@ -1142,7 +1147,6 @@ std::string Emitter::source() const {
   o << "\n#include \"" << m_.name << ".hpp\"\n\n#include <algorithm>\n#include <cmath>\n\n"
     << (a_.beams.empty() ? "" : "#include <mbrt/beam_element.hpp>\n")
     << (piecewise_drivers() ? "#include <mbrt/piecewise_function.hpp>\n" : "")
-    << (modal() ? "#include <mbrt/modal_body.hpp>\n" : "")
     << "#include <mbrt/reactions.hpp>\n#include <mbrt/schemes/"
     << step_header() << ">\n" << (parallel() ? "#include <mbrt/worker_team.hpp>\n" : "") << "\n"
     << "namespace mbrt::models::" << m_.name << " {\n\nnamespace {\n\n";

@@ -193,12 +193,17 @@ std::string Emitter::modal_node_place(int b, int k) const {
 void Emitter::modal_loads(std::ostringstream& o) const {
   for (size_t k = 0; k < a_.modal.size(); ++k) {
     const int i = a_.modal[k].body, n = static_cast<int>(k);
-    o << "  {  // modal body " << body(i).name << ": inertia terms of the deformed body, elastic and damping loads\n"
-      << "    const auto e = mbrt::modal_loads<" << a_.modal[k].modes << ">(" << body(i).name << "_modal, " << pose(i) << ".R, k.vel" << at(i) << ".v, k.vel"
+    const std::string N = std::to_string(a_.modal[k].modes), b = body(i).name + "_modal";
+    o << "  {  // modal body " << body(i).name << ": inertia terms of the deformed body, elastic and damping loads,\n"
+      << "     // and the frame's M^-1 at its deformation for the loads' accelerations\n"
+      << "    const mbrt::ModalMass<" << N << "> mass = mbrt::modal_mass<" << N << ">(" << b << ", " << modal_coordinates(n, "modal_q")
+      << ");\n"
+      << "    const auto e = mbrt::modal_loads<" << N << ">(" << b << ", mass, " << pose(i) << ".R, k.vel" << at(i) << ".v, k.vel"
       << at(i) << ".w,\n        " << (a_.gravity ? gravity() : "mbrt::Vec3::Zero()") << ", "
       << modal_coordinates(n, "modal_q") << ", " << modal_coordinates(n, "modal_p") << ", l.modal" << modal_slot(n) << ".head<"
-      << a_.modal[k].modes << ">(), l.w" << at(i) << ");\n"
-      << "    l.modal" << modal_slot(n) << ".head<" << a_.modal[k].modes << ">() = e.momentum_rate;\n"
+      << N << ">(), l.w" << at(i) << ");\n"
+      << "    l.modal" << modal_slot(n) << ".head<" << N << ">() = e.momentum_rate;\n"
+      << "    l.modal_inverse" << modal_slot(n) << " = mbrt::modal_inverse_mass<" << N << ">(" << b << ", mass, " << pose(i) << ".R);\n"
       << "    l.elastic_energy += e.potential;\n  }\n";
   }
 }

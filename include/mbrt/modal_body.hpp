@@ -243,8 +243,7 @@ struct ModalInverseMass {
 
 // The frame's reduced mass Mf(q) - S(q) M_qq(q)^-1 S(q)^T in (v body, w body).
 template <int N>
-inline Eigen::Matrix<double, 6, 6> modal_reduced_mass(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
-  const ModalMass<N> mm = modal_mass<N>(b, q);
+inline Eigen::Matrix<double, 6, 6> modal_reduced_mass(const ModalBody<N>& b, const ModalMass<N>& mm) noexcept {
   Eigen::Matrix<double, N, 6> S_T;
   S_T << mm.St_T, mm.Sr_T;
   const Mat3 c = skew(mm.c);
@@ -262,14 +261,25 @@ inline Eigen::Matrix<double, 6, 6> modal_reduced_mass(const ModalBody<N>& b, con
   return reduced;
 }
 
-// M^-1 of the frame's 6 velocities as the step applies it.
+template <int N>
+inline Eigen::Matrix<double, 6, 6> modal_reduced_mass(const ModalBody<N>& b, const Eigen::Matrix<double, N, 1>& q) noexcept {
+  return modal_reduced_mass<N>(b, modal_mass<N>(b, q));
+}
+
+// M^-1 of the frame's 6 velocities as the step applies it, from the mass
+// at the body's deformation and its frame's turn R.
+template <int N>
+inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const ModalMass<N>& mm, const Mat3& R) noexcept {
+  Eigen::Matrix<double, 6, 6> L = modal_reduced_mass<N>(b, mm), inverse = Eigen::Matrix<double, 6, 6>::Identity();
+  cholesky_in_place<6>(L);  // a Gram matrix's Schur complement: positive definite
+  solve_factored<6, 6>(L, inverse);
+  return {inverse, R};
+}
+
 template <int N>
 inline ModalInverseMass modal_inverse_mass(const ModalBody<N>& b, const EulerParameters& p,
                                            const Eigen::Matrix<double, N, 1>& q) noexcept {
-  Eigen::Matrix<double, 6, 6> L = modal_reduced_mass<N>(b, q), inverse = Eigen::Matrix<double, 6, 6>::Identity();
-  cholesky_in_place<6>(L);  // a Gram matrix's Schur complement: positive definite
-  solve_factored<6, 6>(L, inverse);
-  return {inverse, rotation_matrix(p)};
+  return modal_inverse_mass<N>(b, modal_mass<N>(b, q), rotation_matrix(p));
 }
 
 inline Vec6 inverse_mass_times(const ModalInverseMass& b, const Wrench& w) noexcept {
@@ -368,12 +378,12 @@ inline StretchTerms<N> stretch_terms(const ModalBody<N>& b, const ModalMass<N>& 
 // g^T f; the shift's acceleration at zero accelerations, kappa, is an
 // inertia load. dp/dt = dT/dq + Q (q are true coordinates), the linear
 // field's dT/dq plus the shift's, (d vs / dq)^T P with P the momentum.
+// mm is the mass at q.
 template <int N>
-inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w, const Vec3& g,
-                                const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
+inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const ModalMass<N>& mm, const Mat3& R, const Vec3& v, const Vec3& w,
+                                const Vec3& g, const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
                                 const Eigen::Matrix<double, N, 1>& applied, Wrench& load) noexcept {
   using Modes = Eigen::Matrix<double, N, 1>;
-  const ModalMass<N> mm = modal_mass<N>(b, q);
   const Vec3 vb = R.transpose() * v, gb = R.transpose() * g;
   const Modes qd = modal_rates<N>(mm, R, v, w, p);
   const Eigen::Matrix<double, 3, N> g_rate = shortening_columns<N>(b, qd);
@@ -415,6 +425,13 @@ inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3
   const Modes rate = Q + centrifugal - coriolis + b.St_T * s.velocity.cross(w) + g_rate.transpose() * s.momentum -
                      mm.g.transpose() * w.cross(s.momentum) + stretch.energy_gradient;
   return {rate, 0.5 * q.dot(b.stiffness.cwiseProduct(q)) - gb.dot(mm.c)};
+}
+
+template <int N>
+inline ModalLoad<N> modal_loads(const ModalBody<N>& b, const Mat3& R, const Vec3& v, const Vec3& w, const Vec3& g,
+                                const Eigen::Matrix<double, N, 1>& q, const Eigen::Matrix<double, N, 1>& p,
+                                const Eigen::Matrix<double, N, 1>& applied, Wrench& load) noexcept {
+  return modal_loads<N>(b, modal_mass<N>(b, q), R, v, w, g, q, p, applied, load);
 }
 
 // The body's kinetic energy: the linear field's in its shifted frame.
