@@ -356,7 +356,7 @@ TEST_CASE("the step holding modal nodes by joints allocates nothing") {
 }
 
 
-TEST_CASE("the generator holds a modal body's node by a point joint, and refuses the joints it cannot hold there") {
+TEST_CASE("the generator holds a modal body's node by a point joint or a screw, and refuses what it cannot hold there") {
   const std::string beam =
       "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 4, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
       "rho_A: 2.0, rho_J: 0.01}\n";
@@ -374,10 +374,10 @@ TEST_CASE("the generator holds a modal body's node by a point joint, and refuses
                                           "  - {name: prop, type: spherical, body1: ground, body2: boom@tip, point: [1.9, 0, 0]}\n");
   CHECK(off.find("joints.prop") != std::string::npos);
   CHECK(off.find("node 10 of modal body 'boom', which is at (2.000000, 0.000000, 0.000000") != std::string::npos);
-  const std::string slider = generator_error("name: slider\n" + beam + "joints:\n" + clamp +
-                                             "  - {name: slider, type: screw, body1: ground, body2: boom@tip, "
-                                             "point: [2, 0, 0], axis: [0, 0, 1], lead: 0.01}\n");
-  CHECK(slider == "");  // a screw joint takes the node too
+  const std::string screw = generator_error("name: screw\n" + beam + "joints:\n" + clamp +
+                                            "  - {name: thread, type: screw, body1: ground, body2: boom@tip, "
+                                            "point: [2, 0, 0], axis: [0, 0, 1], lead: 0.01}\n");
+  CHECK(screw == "");  // a screw joint takes the node too
   // Pinned at both ends along its axis, a beam of bending modes cannot bend
   // without stretching; propped (its frame clamped, unable to turn) it can.
   const std::string pinned = generator_error(

@@ -112,7 +112,7 @@ TEST_CASE("a free modal body tied to a particle by a spring at its tip keeps the
   CHECK(fine.angular_momentum < coarse.angular_momentum / 6);
 }
 
-TEST_CASE("the generator places a force at a modal body's node, and refuses a planar joint there or a point off the node") {
+TEST_CASE("the generator places a force at a modal body's node, takes a planar joint there, and refuses a point off the node") {
   const std::string beam =
       "bodies:\n  - name: boom\n    flexible: {length: 2.0, elements: 10, modes: 4, EA: 1.0e6, GJ: 500.0, EI: 800.0, "
       "rho_A: 2.0, rho_J: 0.01}\n";

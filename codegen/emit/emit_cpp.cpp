@@ -972,7 +972,7 @@ void Emitter::mass_products(std::ostringstream& o) const {
     const std::string inverse = plan(i).modal < 0 ? inverse_mass_of(i) : "l.modal_inverse" + modal_slot(plan(i).modal);
     out += "  a" + at(i) + " = mbrt::inverse_mass_times(" + inverse + ", l.w" + at(i) + ");\n";
   }
-  if (modal() && !a_.tunable_masses) part_lines[0] += "  (void)s;  // the modal bodies' M^-1 comes with the loads\n";
+  if (modal()) part_lines[0] += "  (void)s;  // the modal bodies' M^-1 comes with the loads\n";
   if (modal()) part_lines[0] += "  for (int b = 0; b < kModalBodies; ++b) a[kBodies + b] = l.modal[b];  // the momenta's rates\n";
   o << (parallel() ? parallel_region(part_lines) : part_lines[0]) << "  return a;\n}\n\n";
 }
