@@ -244,16 +244,12 @@ struct ModalInverseMass {
 // The frame's reduced mass Mf(q) - S(q) M_qq(q)^-1 S(q)^T in (v body, w body).
 template <int N>
 inline Eigen::Matrix<double, 6, 6> modal_reduced_mass(const ModalBody<N>& b, const ModalMass<N>& mm) noexcept {
-  Eigen::Matrix<double, N, 6> S_T;
-  S_T << mm.St_T, mm.Sr_T;
+  // S M_qq^-1 S^T = W W^T with W = S L^-T.
+  Eigen::Matrix<double, 6, N> W;
+  W << mm.St_T.transpose(), mm.Sr_T.transpose();
+  solve_right_lower_transposed<6, N>(mm.L, W);
   const Mat3 c = skew(mm.c);
-  // S M_qq^-1 S^T = W^T W with W = L^-1 S^T.
-  for (int j = 0; j < 6; ++j) {
-    Eigen::Matrix<double, N, 1> column = S_T.col(j);
-    solve_lower<N>(mm.L, column);
-    S_T.col(j) = column;
-  }
-  Eigen::Matrix<double, 6, 6> reduced = -S_T.transpose() * S_T;
+  Eigen::Matrix<double, 6, 6> reduced = -W * W.transpose();
   reduced.template topLeftCorner<3, 3>().diagonal().array() += b.m;
   reduced.template topRightCorner<3, 3>() -= c;
   reduced.template bottomLeftCorner<3, 3>() += c;
